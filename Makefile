@@ -1,0 +1,66 @@
+# The front door. `make reproduce` (quick scale) and `make test` work on a fresh Debian machine:
+# both install what is missing first (`make deps`, apt-get, idempotent).
+BUILD      ?= build
+BUILD_CUDA ?= build-cuda
+SCALE      ?= quick
+PY         := /usr/bin/python3
+JOBS       ?= $(shell nproc)
+CMAKE_ARGS ?=
+
+# Debian packages the project needs (Thrust comes from the CUDA toolkit when it is installed,
+# else from Debian's libthrust-dev).
+DEBS := cmake make g++ ccache libomp-dev libeigen3-dev libhdf5-dev libgtest-dev googletest \
+        python3 python3-matplotlib python3-numpy python3-yaml
+THRUST_FROM_CUDA := $(wildcard /usr/local/cuda/targets/x86_64-linux/include/cccl/thrust/version.h /usr/local/cuda/include/thrust/version.h)
+ifeq ($(strip $(THRUST_FROM_CUDA)),)
+DEBS += libthrust-dev libcub-dev
+endif
+NVCC := $(firstword $(wildcard /usr/local/cuda/bin/nvcc) $(shell command -v nvcc 2>/dev/null))
+
+.PHONY: help deps configure build test test-unit check-cuda build-cuda reproduce reproduce-% clean
+
+help:
+	@echo "make reproduce          every implemented study at SCALE=$(SCALE) -> reports/"
+	@echo "make reproduce-NAME     one study or chapter (appendixA, chapter2, ...), e.g. SCALE=full"
+	@echo "make test               install deps, build, run every test (unit, harness, studies at quick scale)"
+	@echo "make build-cuda         configure and build the CUDA backend (nvcc)"
+	@echo "make deps               install missing Debian packages"
+
+deps:
+	@missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  echo "deps: installing$$missing"; \
+	  if [ "$$(id -u)" = 0 ]; then SUDO=""; else SUDO=sudo; fi; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing >/dev/null \
+	    || { echo "deps: apt-get install failed for:$$missing"; exit 1; }; \
+	else echo "deps: all present"; fi
+
+configure: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DRBFIB_PYTHON=$(PY) $(CMAKE_ARGS) >/dev/null
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+test-unit: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -L "unit|harness"
+
+# The CUDA backend must compile wherever nvcc is installed (GPU or not); it runs only on a GPU.
+check-cuda: deps
+	@if [ -n "$(NVCC)" ]; then $(MAKE) --no-print-directory build-cuda; \
+	else echo "check-cuda: no nvcc on this machine, CUDA build skipped"; fi
+
+build-cuda:
+	cmake -S . -B $(BUILD_CUDA) -DRBFIB_BACKEND=CUDA -DCMAKE_CUDA_COMPILER=$(NVCC) -DRBFIB_PYTHON=$(PY) $(CMAKE_ARGS) >/dev/null
+	cmake --build $(BUILD_CUDA) -j $(JOBS)
+
+test: build check-cuda
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+reproduce: build
+	$(PY) -m harness run all --scale $(SCALE) --build $(BUILD)
+
+reproduce-%: build
+	$(PY) -m harness run $* --scale $(SCALE) --build $(BUILD)
+
+clean:
+	rm -rf $(BUILD) $(BUILD_CUDA) runs

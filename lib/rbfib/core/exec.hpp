@@ -1,0 +1,51 @@
+#pragma once
+// The one portability header: what differs between the CPU build (g++, Thrust's OpenMP device
+// system) and the CUDA build (nvcc, Thrust's CUDA device system). Kernels are functions of one
+// index marked RBFIB_HD; the launch lives in the caller (for_each_index).
+#include <thrust/device_vector.h>
+#include <thrust/host_vector.h>
+#include <thrust/for_each.h>
+#include <thrust/iterator/counting_iterator.h>
+
+#include <cstddef>
+
+#if defined(__CUDACC__)
+#define RBFIB_HD __host__ __device__
+#else
+#define RBFIB_HD
+#endif
+
+#if defined(RBFIB_BACKEND_CUDA)
+#define RBFIB_BACKEND_NAME "CUDA (Thrust/CUDA)"
+#else
+#define RBFIB_BACKEND_NAME "CPU (Thrust/OpenMP)"
+#endif
+
+namespace rbfib {
+
+using index_t = std::ptrdiff_t;
+
+/// Storage on the execution device (host memory in the CPU build).
+template <class T>
+using device_vector = thrust::device_vector<T>;
+template <class T>
+using host_vector = thrust::host_vector<T>;
+
+using dvec = device_vector<double>;
+
+/// Raw pointer to device storage, for capture in kernels.
+template <class T>
+T* ptr(device_vector<T>& v) { return thrust::raw_pointer_cast(v.data()); }
+template <class T>
+const T* ptr(const device_vector<T>& v) { return thrust::raw_pointer_cast(v.data()); }
+
+/// Calls kernel(i) for i in [0, n) on the execution device, in parallel.
+template <class Kernel>
+void for_each_index(index_t n, Kernel kernel) {
+  thrust::for_each(thrust::counting_iterator<index_t>(0), thrust::counting_iterator<index_t>(n), kernel);
+}
+
+/// Human-readable name of the backend this library was built for.
+inline const char* backend_name() { return RBFIB_BACKEND_NAME; }
+
+}  // namespace rbfib

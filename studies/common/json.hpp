@@ -1,0 +1,43 @@
+#pragma once
+// A small JSON value for the studies' machine-readable results (results.json). Writing only.
+#include <map>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace rbfib::study {
+
+class Json {
+ public:
+  using Object = std::vector<std::pair<std::string, Json>>;  // keeps insertion order
+  using Array = std::vector<Json>;
+
+  Json() : v_(nullptr) {}
+  Json(double x) : v_(x) {}
+  Json(int x) : v_(double(x)) {}
+  Json(long x) : v_(double(x)) {}
+  Json(long long x) : v_(double(x)) {}
+  Json(bool x) : v_(x) {}
+  Json(const char* s) : v_(std::string(s)) {}
+  Json(std::string s) : v_(std::move(s)) {}
+  Json(const std::vector<double>& xs) : v_(Array(xs.begin(), xs.end())) {}
+  Json(const std::vector<std::string>& xs) : v_(Array(xs.begin(), xs.end())) {}
+  Json(Array a) : v_(std::move(a)) {}
+
+  static Json object() { Json j; j.v_ = Object{}; return j; }
+  static Json array() { Json j; j.v_ = Array{}; return j; }
+
+  /// Object member access; creates the member (and turns null into an object) if absent.
+  Json& operator[](const std::string& key);
+  /// Appends to an array (turns null into an array).
+  Json& push(Json value);
+
+  void write(std::ostream& os, int indent = 0) const;
+
+ private:
+  std::variant<std::nullptr_t, bool, double, std::string, Array, Object> v_;
+};
+
+}  // namespace rbfib::study

@@ -1,0 +1,109 @@
+#include "common/study.hpp"
+
+#include "rbfib/core/exec.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <thread>
+#include <vector>
+
+namespace rbfib::study {
+
+const char* to_string(Scale s) { return s == Scale::quick ? "quick" : "full"; }
+
+Options parse_command_line(int argc, char** argv, const std::string& name, const std::string& description) {
+  Options opt;
+  opt.name = name;
+  auto fail = [&](const std::string& msg) {
+    std::cerr << name << ": " << msg << " (try --help)\n";
+    std::exit(2);
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::cout << "usage: study_" << name << " [--scale quick|full] [--out DIR]\n" << description << "\n";
+      std::exit(0);
+    } else if (a == "--scale") {
+      if (++i >= argc) fail("--scale needs a value: quick or full");
+      const std::string s = argv[i];
+      if (s == "quick") opt.scale = Scale::quick;
+      else if (s == "full") opt.scale = Scale::full;
+      else fail("--scale = '" + s + "' is not one of: quick, full");
+    } else if (a == "--out") {
+      if (++i >= argc) fail("--out needs a directory");
+      opt.out_dir = argv[i];
+    } else {
+      fail("unknown argument '" + a + "'");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(opt.out_dir, ec);
+  if (ec) fail("--out = '" + opt.out_dir + "' cannot be created: " + ec.message());
+  std::cout << "[" << name << "] scale = " << to_string(opt.scale) << ", out = " << opt.out_dir
+            << ", backend = " << backend_name() << ", threads = " << omp_get_max_threads() << std::endl;
+  return opt;
+}
+
+static std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
+}
+
+Json make_results(const Options& opt) {
+  Json r = Json::object();
+  r["study"] = opt.name;
+  r["scale"] = to_string(opt.scale);
+  Json& p = r["provenance"];
+#if defined(__clang__)
+  p["compiler"] = std::string("clang ") + __clang_version__;
+#elif defined(__GNUC__)
+  p["compiler"] = std::string("gcc ") + __VERSION__;
+#endif
+  p["backend"] = backend_name();
+  p["threads"] = omp_get_max_threads();
+  p["cpu"] = cpu_model();
+  p["hardware_threads"] = int(std::thread::hardware_concurrency());
+  return r;
+}
+
+void write_results(const Options& opt, const Json& results) {
+  const auto path = std::filesystem::path(opt.out_dir) / "results.json";
+  std::ofstream out(path);
+  results.write(out);
+  out << "\n";
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+  std::cout << "[" << opt.name << "] results written to " << path.string() << std::endl;
+}
+
+void log(const Options& opt, const std::string& message) { std::cout << "[" << opt.name << "] " << message << std::endl; }
+
+double median_seconds(int repeats, const std::function<void()>& fn) {
+  std::vector<double> t;
+  for (int r = 0; r < std::max(1, repeats); ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    fn();
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(t.begin(), t.end());
+  return t.size() % 2 ? t[t.size() / 2] : 0.5 * (t[t.size() / 2 - 1] + t[t.size() / 2]);
+}
+
+int run_main(const std::string& name, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const std::exception& e) {
+    std::cerr << name << ": error: " << e.what() << std::endl;
+    return 1;
+  }
+}
+
+}  // namespace rbfib::study

@@ -1,0 +1,41 @@
+#pragma once
+// What every study driver shares: the command line (--scale quick|full, --out DIR), the echo of
+// parameters, provenance (compiler, backend, machine, threads), timing as the median of repeats,
+// and the one machine-readable results file DIR/results.json (format: harness/FORMAT.md).
+#include "common/json.hpp"
+
+#include <chrono>
+#include <functional>
+#include <string>
+
+namespace rbfib::study {
+
+enum class Scale { quick, full };
+
+struct Options {
+  std::string name;
+  Scale scale = Scale::quick;
+  std::string out_dir = ".";
+};
+
+/// Parses argv; prints usage and exits 0 on --help; prints one line and exits 2 on bad input.
+Options parse_command_line(int argc, char** argv, const std::string& name, const std::string& description);
+
+const char* to_string(Scale s);
+
+/// A results document pre-filled with the study name, scale and provenance.
+Json make_results(const Options& opt);
+
+/// Writes results to <out_dir>/results.json and says where.
+void write_results(const Options& opt, const Json& results);
+
+/// Prints "[name] message" to stdout, flushed (progress on long runs).
+void log(const Options& opt, const std::string& message);
+
+/// Median wall time in seconds of `repeats` calls of fn.
+double median_seconds(int repeats, const std::function<void()>& fn);
+
+/// Runs body, turning any exception into one line on stderr and exit status 1.
+int run_main(const std::string& name, const std::function<int()>& body);
+
+}  // namespace rbfib::study
