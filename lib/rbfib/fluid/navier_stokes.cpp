@@ -1,0 +1,205 @@
+#include "rbfib/fluid/navier_stokes.hpp"
+
+#include "rbfib/fluid/mac_kernels.hpp"
+
+#include <chrono>
+#include <cmath>
+
+namespace rbfib {
+
+const char* to_string(TimeIntegrator integrator) {
+  switch (integrator) {
+    case TimeIntegrator::backward_forward_euler: return "backward-forward Euler";
+    case TimeIntegrator::peskin_two_stage: return "Peskin 2-stage";
+  }
+  return "?";
+}
+
+namespace {
+using clock_type = std::chrono::steady_clock;
+double seconds_since(clock_type::time_point t0) {
+  return std::chrono::duration<double>(clock_type::now() - t0).count();
+}
+
+/// out = k (f / rho - G p / rho - N)
+struct StageSource {
+  const double *f, *gp, *adv;
+  double k, inv_rho;
+  double* out;
+  RBFIB_HD void operator()(index_t i) const { out[i] = k * ((f ? f[i] : 0.0) * inv_rho - gp[i] * inv_rho - adv[i]); }
+};
+
+/// y = s x
+struct Scaled {
+  const double* x;
+  double s;
+  double* y;
+  RBFIB_HD void operator()(index_t i) const { y[i] = s * x[i]; }
+};
+}  // namespace
+
+NavierStokesSolver::NavierStokesSolver(const MacGrid& grid, FluidParameters fluid, NavierStokesOptions options,
+                                       BoundaryVelocity boundary)
+    : grid_(grid), fluid_(fluid), options_(std::move(options)), boundary_(std::move(boundary)), ops_(grid) {
+  require(std::isfinite(fluid_.density) && fluid_.density > 0.0, "fluid.density", fluid_.density,
+          "must be positive and finite (g/cm^3)");
+  require(std::isfinite(fluid_.viscosity) && fluid_.viscosity > 0.0, "fluid.viscosity", fluid_.viscosity,
+          "must be positive and finite (poise)");
+  require(std::isfinite(options_.dt) && options_.dt > 0.0, "fluid.dt", options_.dt, "must be positive and finite (s)");
+  const double nu = fluid_.viscosity / fluid_.density;
+  // Backward Euler: c = dt nu; Peskin: both stages have c = (dt/2) nu.
+  const double c = (options_.integrator == TimeIntegrator::backward_forward_euler ? 1.0 : 0.5) * options_.dt * nu;
+  for (int a = 0; a < grid_.dims; ++a) {
+    HelmholtzOptions h = options_.helmholtz;
+    h.solver.name = options_.helmholtz.solver.name + " u" + std::to_string(a);
+    helmholtz_[a] = std::make_unique<HelmholtzSolver>(ops_.component_box(a), c, h);
+  }
+  poisson_ = std::make_unique<PoissonSolver>(ops_.scalar_box(), options_.poisson);
+}
+
+FluidState NavierStokesSolver::zero_state(double t) const {
+  FluidState s;
+  s.u = zero_vector_field(grid_);
+  s.p = dvec(ops_.scalar_box().size(), 0.0);
+  s.phi = dvec(ops_.scalar_box().size(), 0.0);
+  s.t = t;
+  return s;
+}
+
+double NavierStokesSolver::force_time(double t) const {
+  return options_.integrator == TimeIntegrator::backward_forward_euler ? t + options_.dt : t + 0.5 * options_.dt;
+}
+
+const VelocityBoundaryData& NavierStokesSolver::boundary_data(double t) const {
+  for (auto& entry : cache_)
+    if (entry.first == t) return entry.second;
+  VelocityBoundaryData data;
+  if (boundary_) {
+    const BoundaryVelocity& b = boundary_;
+    data = sample_velocity_boundary(grid_, [&](int a, int d, int side, double x, double y, double z) {
+      return b(a, d, side, t, x, y, z);
+    });
+  } else {
+    data = zero_velocity_boundary(grid_);
+  }
+  ops_.make_compatible(data);
+  if (cache_.size() >= 4) cache_.erase(cache_.begin());
+  cache_.emplace_back(t, std::move(data));
+  return cache_.back().second;
+}
+
+double NavierStokesSolver::max_divergence(const FluidState& state) const {
+  dvec div;
+  ops_.divergence(state.u, &boundary_data(state.t), div);
+  return blas::norm_inf(div);
+}
+
+void NavierStokesSolver::stage(FluidState& state, const VectorField& u_src, double t_src, const VectorField& u_adv,
+                               double t_adv, double k, double theta, const VectorField* f, StepStats& stats, int s) {
+  const int dims = grid_.dims;
+  const double rho = fluid_.density, mu = fluid_.viscosity, nu = mu / rho;
+  const double t_new = t_src + k;
+
+  auto t0 = clock_type::now();
+  ops_.advection(u_adv, boundary_data(t_adv), adv_);
+  stats.seconds_advection += seconds_since(t0);
+
+  t0 = clock_type::now();
+  ops_.gradient(state.p, gp_);
+  // gamma*: the data at t_new, plus the lagged slip G phi on tangential components at no-slip walls.
+  VelocityBoundaryData gstar = boundary_data(t_new);
+  ops_.gradient(state.phi, tmp_);
+  for (int a = 0; a < dims; ++a)
+    for (int d = 0; d < dims; ++d) {
+      if (d == a || grid_.periodic(d)) continue;
+      for (int side = 0; side < 2; ++side) {
+        if ((side ? grid_.upper[d] : grid_.lower[d]) != MacBoundary::dirichlet) continue;
+        dvec& g = gstar[a].face[d][side];
+        for_each_index(index_t(g.size()), kernels::AddFaceRow{shape_of(ops_.component_box(a)), d, side, 1.0,
+                                                              ptr(tmp_[a]), ptr(g)});
+      }
+    }
+  const VelocityBoundaryData& gsrc = boundary_data(t_src);
+  for (int a = 0; a < dims; ++a) {
+    const StaggeredLaplacian& L = helmholtz_[a]->laplacian();
+    const index_t n = L.size();
+    // tmp = k (f / rho - G p / rho - N)
+    dvec& src = tmp_[a];
+    src.resize(n);
+    if (f)
+      require(index_t((*f)[a].size()) == n, "fluid.force[" + std::to_string(a) + "].size", (*f)[a].size(),
+              "does not match velocity component " + std::to_string(a));
+    for_each_index(n, StageSource{f ? ptr((*f)[a]) : nullptr, ptr(gp_[a]), ptr(adv_[a]), k, 1.0 / rho, ptr(src)});
+    L.apply_identity(src, rhs_[a]);  // I~ k (...)
+    L.apply(u_src[a], ustar_[a], 1.0, (1.0 - theta) * k * nu);
+    blas::axpy(1.0, ustar_[a], rhs_[a]);
+    if (theta < 1.0) L.add_boundary(gsrc[a], rhs_[a], (1.0 - theta) * k * nu);
+    L.add_boundary(gstar[a], rhs_[a], theta * k * nu);
+  }
+  stats.seconds_other += seconds_since(t0);
+
+  t0 = clock_type::now();
+  for (int a = 0; a < dims; ++a) {
+    ustar_[a] = u_src[a];  // initial guess
+    stats.helmholtz_iterations[s][a] = helmholtz_[a]->solve(rhs_[a], ustar_[a]).iterations;
+  }
+  stats.seconds_helmholtz += seconds_since(t0);
+
+  // Projection (PmII): -L q = -D u* / k, u = u* - k G q, p += rho q - theta k mu L q.
+  t0 = clock_type::now();
+  ops_.divergence(ustar_, &gstar, div_);
+  for_each_index(index_t(div_.size()), Scaled{ptr(div_), -1.0 / k, ptr(div_)});  // -D u* / k
+  stats.seconds_projection += seconds_since(t0);
+
+  t0 = clock_type::now();
+  if (q_.size() != div_.size()) q_.assign(div_.size(), 0.0);
+  // initial guess: the last pseudo-pressure, phi / k
+  for_each_index(index_t(q_.size()), Scaled{ptr(state.phi), 1.0 / k, ptr(q_)});
+  stats.poisson_iterations[s] = poisson_->solve(div_, q_).iterations;
+  stats.seconds_poisson += seconds_since(t0);
+
+  t0 = clock_type::now();
+  ops_.gradient(q_, gp_);
+  VectorField& u = state.u;
+  for (int a = 0; a < dims; ++a) {
+    u[a] = ustar_[a];
+    blas::axpy(-k, gp_[a], u[a]);
+  }
+  poisson_->laplacian().apply(q_, lq_);
+  blas::axpy(rho, q_, state.p);
+  blas::axpy(-theta * k * mu, lq_, state.p);
+  for_each_index(index_t(q_.size()), Scaled{ptr(q_), k, ptr(state.phi)});  // phi = k q
+  stats.seconds_projection += seconds_since(t0);
+  ++stats.stages;
+}
+
+StepStats NavierStokesSolver::step(FluidState& state, const VectorField* f) {
+  for (int a = 0; a < grid_.dims; ++a)
+    require(index_t(state.u[a].size()) == ops_.component_box(a).size(), "fluid.state.u[" + std::to_string(a) + "].size",
+            state.u[a].size(), "does not match the MAC grid");
+  require(index_t(state.p.size()) == ops_.scalar_box().size(), "fluid.state.p.size", state.p.size(),
+          "does not match the MAC grid");
+  if (index_t(state.phi.size()) != ops_.scalar_box().size()) state.phi.assign(ops_.scalar_box().size(), 0.0);
+  StepStats stats;
+  const double t = state.t, dt = options_.dt;
+  if (options_.integrator == TimeIntegrator::backward_forward_euler) {
+    const VectorField un = state.u;
+    stage(state, un, t, un, t, dt, 1.0, f, stats, 0);
+  } else {
+    const VectorField un = state.u;
+    stage(state, un, t, un, t, 0.5 * dt, 1.0, f, stats, 0);  // u^{n+1/2}
+    u_half_ = state.u;
+    stage(state, un, t, u_half_, t + 0.5 * dt, dt, 0.5, f, stats, 1);
+  }
+  state.t = t + dt;
+  for (int a = 0; a < grid_.dims; ++a)
+    if (!blas::all_finite(state.u[a]))
+      throw NumericalError("fluid step at t = " + to_text(t) + ": velocity component " + std::to_string(a) +
+                           " is not finite (NaN or Inf); limit: finite values");
+  auto t0 = clock_type::now();
+  stats.max_divergence = max_divergence(state);
+  stats.seconds_other += seconds_since(t0);
+  return stats;
+}
+
+}  // namespace rbfib
