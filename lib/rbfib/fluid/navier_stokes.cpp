@@ -61,7 +61,7 @@ FluidState NavierStokesSolver::zero_state(double t) const {
   FluidState s;
   s.u = zero_vector_field(grid_);
   s.p = dvec(ops_.scalar_box().size(), 0.0);
-  s.phi = dvec(ops_.scalar_box().size(), 0.0);
+  s.phi[0] = s.phi[1] = dvec(ops_.scalar_box().size(), 0.0);
   s.t = t;
   return s;
 }
@@ -108,7 +108,7 @@ void NavierStokesSolver::stage(FluidState& state, const VectorField& u_src, doub
   ops_.gradient(state.p, gp_);
   // gamma*: the data at t_new, plus the lagged slip G phi on tangential components at no-slip walls.
   VelocityBoundaryData gstar = boundary_data(t_new);
-  ops_.gradient(state.phi, tmp_);
+  ops_.gradient(state.phi[s], tmp_);
   for (int a = 0; a < dims; ++a)
     for (int d = 0; d < dims; ++d) {
       if (d == a || grid_.periodic(d)) continue;
@@ -154,7 +154,7 @@ void NavierStokesSolver::stage(FluidState& state, const VectorField& u_src, doub
   t0 = clock_type::now();
   if (q_.size() != div_.size()) q_.assign(div_.size(), 0.0);
   // initial guess: the last pseudo-pressure, phi / k
-  for_each_index(index_t(q_.size()), Scaled{ptr(state.phi), 1.0 / k, ptr(q_)});
+  for_each_index(index_t(q_.size()), Scaled{ptr(state.phi[s]), 1.0 / k, ptr(q_)});
   stats.poisson_iterations[s] = poisson_->solve(div_, q_).iterations;
   stats.seconds_poisson += seconds_since(t0);
 
@@ -168,7 +168,7 @@ void NavierStokesSolver::stage(FluidState& state, const VectorField& u_src, doub
   poisson_->laplacian().apply(q_, lq_);
   blas::axpy(rho, q_, state.p);
   blas::axpy(-theta * k * mu, lq_, state.p);
-  for_each_index(index_t(q_.size()), Scaled{ptr(q_), k, ptr(state.phi)});  // phi = k q
+  for_each_index(index_t(q_.size()), Scaled{ptr(q_), k, ptr(state.phi[s])});  // phi = k q
   stats.seconds_projection += seconds_since(t0);
   ++stats.stages;
 }
@@ -179,7 +179,8 @@ StepStats NavierStokesSolver::step(FluidState& state, const VectorField* f) {
             state.u[a].size(), "does not match the MAC grid");
   require(index_t(state.p.size()) == ops_.scalar_box().size(), "fluid.state.p.size", state.p.size(),
           "does not match the MAC grid");
-  if (index_t(state.phi.size()) != ops_.scalar_box().size()) state.phi.assign(ops_.scalar_box().size(), 0.0);
+  for (dvec& phi : state.phi)
+    if (index_t(phi.size()) != ops_.scalar_box().size()) phi.assign(ops_.scalar_box().size(), 0.0);
   StepStats stats;
   const double t = state.t, dt = options_.dt;
   if (options_.integrator == TimeIntegrator::backward_forward_euler) {

@@ -7,6 +7,7 @@
 //   (I~ - theta k nu L) u* = (I~ + (1 - theta) k nu L) u^s + k I~ [f / rho - G p / rho - N(u^a)]
 //                             + (1 - theta) k nu B_h gamma(t^s) + theta k nu B_h gamma*,     (2.6)
 //   gamma* = u_b(t^{new}) + G phi_lag on the tangential components at Dirichlet walls,        (2.7)
+//   (phi_lag = k q of the same stage of the previous step)
 //   -L q = -D u* / k  (homogeneous Neumann on walls),  u^{new} = u* - k G q,                  (2.9, 2.8)
 //   p <- p + rho q - theta k mu L q,  phi_lag = k q,
 // nu = mu / rho. Integrators:
@@ -58,7 +59,9 @@ using BoundaryVelocity = std::function<double(int, int, int, double, double, dou
 struct FluidState {
   VectorField u;  ///< velocity (cm/s)
   dvec p;         ///< pressure (dyn/cm^2), cell centres
-  dvec phi;       ///< k q of the last projection (cm^2/s): the lagged boundary correction of eq. 2.7
+  /// k q of the last projection of each stage (cm^2/s): G phi is the lagged boundary correction of
+  /// eq. 2.7 for the same stage of the next step, phi / k its initial guess.
+  std::array<dvec, 2> phi;
   double t = 0.0;
 };
 
