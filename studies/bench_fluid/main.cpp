@@ -1,0 +1,185 @@
+// Study `bench_fluid`: speed of the Navier-Stokes solver of Section 2.1 (no table in the seed; its
+// claim is that the Poisson solve takes about 60% of the wall clock time). Reports, per grid and
+// integrator, the median time per step and per component (advection, Helmholtz solves, Poisson
+// solve, projection), and the achieved memory bandwidth of the matrix-free Helmholtz/Laplacian
+// apply against a STREAM-like triad measured in the same run, on the same backend.
+//
+// Run:  build/studies/study_bench_fluid --scale quick|full --out DIR
+//
+// Steps:
+//  1. Triad a = b + s c on 2^24 doubles per array (384 MiB, beyond any cache): bytes moved 3 x 8 n.
+//  2. Laplacian apply out = alpha I~ u + beta L u on a velocity-component box of each grid: bytes
+//     moved at least 2 x 8 n (read u, write out); achieved bandwidth and its fraction of the triad.
+//  3. Steps of the full solver on each grid (quick: 32^3, 64^3; full: 32^3, 64^3, 128^3 and the
+//     whole-blood grid 80 x 60 x 80 with h = 0.2 um), both integrators, dt = 50 ns (Section 5.2):
+//     one warm-up step, then the median over repeats of each component's time.
+#include "common/study.hpp"
+
+#include "rbfib/core/units.hpp"
+#include "rbfib/fluid/navier_stokes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+using namespace rbfib;
+using namespace rbfib::study;
+
+namespace {
+
+Json row(std::initializer_list<Json> values) { return Json(Json::Array(values)); }
+
+Json table(const std::vector<std::string>& columns, const std::vector<std::string>& units) {
+  Json t = Json::object();
+  t["columns"] = Json(columns);
+  t["units"] = Json(units);
+  t["rows"] = Json::array();
+  return t;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Triad {
+  const double *b, *c;
+  double s;
+  double* a;
+  RBFIB_HD void operator()(index_t i) const { a[i] = b[i] + s * c[i]; }
+};
+
+struct GridSpec {
+  std::string name;
+  MacGrid grid;
+};
+
+MacGrid cube(int n) {
+  const double L = 16 * units::um;
+  return make_mac_grid(3, {n, n, n}, {L, L, L}, {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
+}
+
+MacGrid whole_blood() {
+  return make_mac_grid(3, {80, 60, 80}, {16 * units::um, 12 * units::um, 16 * units::um},
+                       {MacBoundary::periodic, MacBoundary::dirichlet, MacBoundary::periodic});
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return run_main("bench_fluid", [&] {
+    Options opt = parse_command_line(argc, argv, "bench_fluid",
+                                     "Navier-Stokes solver timings per step and component; stencil bandwidth");
+    const bool quick = opt.scale == Scale::quick;
+    Json results = make_results(opt);
+    Json& par = results["parameters"];
+    const int repeats = quick ? 3 : 5;
+    const double dt = 50 * units::ns;
+    par["dt_s"] = dt;
+    par["repeats"] = repeats;
+    par["density_g_per_cm3"] = 1.0;
+    par["viscosity_cP"] = 0.1;
+    par["flow"] = "cubes: periodic 16 um box, Taylor-Green velocity (1 cm/s) plus a Gaussian force blob; "
+                  "whole blood: Couette start-up (top wall 12 mm/s) plus the same blob";
+    par["backend"] = backend_name();
+
+    // 1. triad
+    const index_t nt = index_t(1) << 24;
+    dvec a(nt, 0.0), b(nt, 1.0), c(nt, 2.0);
+    for_each_index(nt, Triad{ptr(b), ptr(c), 3.0, ptr(a)});  // touch
+    const double t_triad = median_seconds(quick ? 5 : 10, [&] { for_each_index(nt, Triad{ptr(b), ptr(c), 3.0, ptr(a)}); });
+    const double bw_triad = 3.0 * 8.0 * double(nt) / t_triad;
+    a.clear(); a.shrink_to_fit();
+    b.clear(); b.shrink_to_fit();
+    c.clear(); c.shrink_to_fit();
+    results["values"]["triad_bandwidth_GBps"] = bw_triad / 1e9;
+    log(opt, "triad: " + std::to_string(bw_triad / 1e9) + " GB/s");
+
+    std::vector<GridSpec> grids = {{"32^3", cube(32)}, {"64^3", cube(64)}};
+    if (!quick) {
+      grids.push_back({"128^3", cube(128)});
+      grids.push_back({"80x60x80 (whole blood)", whole_blood()});
+    }
+
+    // 2. stencil bandwidth
+    Json bw = table({"grid", "unknowns", "seconds", "bandwidth_GBps", "fraction_of_triad"}, {"", "", "s", "GB/s", ""});
+    double best_fraction = 0.0;
+    for (const GridSpec& g : grids) {
+      const Box box = g.grid.component(1);
+      StaggeredLaplacian L(box, Correction::appendix_a);
+      dvec u(box.size(), 1.0), out(box.size());
+      L.apply(u, out, 1.0, -0.5);
+      const int reps = std::max(5, int(2e7 / double(box.size())));
+      const double t = median_seconds(reps, [&] { L.apply(u, out, 1.0, -0.5); });
+      const double bwl = 2.0 * 8.0 * double(box.size()) / t;
+      best_fraction = std::max(best_fraction, bwl / bw_triad);
+      bw["rows"].push(row({g.name, double(box.size()), t, bwl / 1e9, bwl / bw_triad}));
+      log(opt, "laplacian apply " + g.name + ": " + std::to_string(bwl / 1e9) + " GB/s (" +
+                   std::to_string(100 * bwl / bw_triad) + "% of triad)");
+    }
+    results["tables"]["stencil_bandwidth"] = bw;
+
+    // 3. solver steps
+    Json steps = table({"grid", "integrator", "unknowns", "seconds", "advection_seconds", "helmholtz_seconds",
+                        "poisson_seconds", "projection_seconds", "other_seconds", "poisson_share", "helmholtz_iterations",
+                        "poisson_iterations"},
+                       {"", "", "", "s", "s", "s", "s", "s", "s", "", "", ""});
+    for (const GridSpec& g : grids)
+      for (TimeIntegrator ti : {TimeIntegrator::backward_forward_euler, TimeIntegrator::peskin_two_stage}) {
+        NavierStokesOptions o;
+        o.integrator = ti;
+        o.dt = dt;
+        const bool channel = !g.grid.periodic(1);
+        const double U = 12 * units::mm / units::s;
+        BoundaryVelocity bc;
+        if (channel) bc = [U](int a, int d, int side, double, double, double, double) { return (a == 0 && d == 1 && side) ? U : 0.0; };
+        NavierStokesSolver ns(g.grid, FluidParameters{1.0, 0.1 * units::cP}, o, bc);
+        FluidState s = ns.zero_state();
+        const double L = 16 * units::um, k = 2 * 3.14159265358979323846 / L;
+        VectorField f;
+        for (int a = 0; a < 3; ++a) {
+          const Box box = ns.operators().component_box(a);
+          s.u[a] = sample(box, [&](double x, double y, double) {
+            if (channel) return a == 0 ? U * y / (12 * units::um) : 0.0;
+            return a == 0 ? std::sin(k * x) * std::cos(k * y) : a == 1 ? -std::cos(k * x) * std::sin(k * y) : 0.0;
+          });
+          f[a] = sample(box, [&](double x, double y, double z) {
+            const double r2 = std::pow(x - 8 * units::um, 2) + std::pow(y - 0.5 * g.grid.length[1], 2) + std::pow(z - 8 * units::um, 2);
+            return a == 0 ? 1e5 * std::exp(-r2 / (units::um * units::um)) : 0.0;
+          });
+        }
+        ns.step(s, &f);  // warm-up
+        std::vector<double> tot, adv, hel, poi, pro, oth, hit, pit;
+        for (int r = 0; r < repeats; ++r) {
+          StepStats st;
+          tot.push_back(median_seconds(1, [&] { st = ns.step(s, &f); }));
+          adv.push_back(st.seconds_advection);
+          hel.push_back(st.seconds_helmholtz);
+          poi.push_back(st.seconds_poisson);
+          pro.push_back(st.seconds_projection);
+          oth.push_back(st.seconds_other);
+          double h = 0, p = 0;
+          for (int k2 = 0; k2 < st.stages; ++k2) {
+            for (int a = 0; a < 3; ++a) h += st.helmholtz_iterations[k2][a];
+            p += st.poisson_iterations[k2];
+          }
+          hit.push_back(h / (3 * st.stages));
+          pit.push_back(p / st.stages);
+        }
+        const double T = median(tot), P = median(poi);
+        const char* iname = ti == TimeIntegrator::backward_forward_euler ? "BFE" : "Peskin";
+        steps["rows"].push(row({g.name, iname, double(g.grid.cells[0]) * g.grid.cells[1] * g.grid.cells[2], T, median(adv),
+                                median(hel), P, median(pro), median(oth), P / T, median(hit), median(pit)}));
+        std::ostringstream m;
+        m << g.name << " " << iname << ": " << T << " s/step (advection " << median(adv) << ", helmholtz " << median(hel)
+          << ", poisson " << P << " = " << 100 * P / T << "%, projection " << median(pro) << ")";
+        log(opt, m.str());
+      }
+    results["tables"]["step_times"] = steps;
+    results["values"]["best_stencil_fraction_of_triad"] = best_fraction;
+    write_results(opt, results);
+    return 0;
+  });
+}
