@@ -18,6 +18,8 @@
 #include "rbfib/core/units.hpp"
 #include "rbfib/fluid/navier_stokes.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -85,6 +87,29 @@ int main(int argc, char** argv) {
                   "whole blood: Couette start-up (top wall 12 mm/s) plus the same blob";
     par["backend"] = backend_name();
 
+    // Thread counts: 1 and all (CPU build). One thread is the figure least disturbed by other load on
+    // the machine; all threads is what a run gets. The CUDA build has one pass.
+    std::vector<int> thread_counts{omp_get_max_threads()};
+#if !defined(RBFIB_BACKEND_CUDA)
+    if (omp_get_max_threads() > 1) thread_counts.insert(thread_counts.begin(), 1);
+#endif
+    par["thread_counts"] = std::to_string(thread_counts.front()) + (thread_counts.size() > 1 ? ", " + std::to_string(thread_counts.back()) : "");
+    std::vector<GridSpec> grids = {{"32^3", cube(32)}, {"64^3", cube(64)}};
+    if (!quick) {
+      grids.push_back({"128^3", cube(128)});
+      grids.push_back({"80x60x80 (whole blood)", whole_blood()});
+    }
+    Json triad = table({"threads", "seconds", "bandwidth_GBps"}, {"", "s", "GB/s"});
+    Json bw = table({"threads", "grid", "unknowns", "seconds", "bandwidth_GBps", "fraction_of_triad"}, {"", "", "", "s", "GB/s", ""});
+    Json steps = table({"threads", "grid", "integrator", "unknowns", "seconds", "advection_seconds", "helmholtz_seconds",
+                        "poisson_seconds", "projection_seconds", "other_seconds", "poisson_share", "helmholtz_iterations",
+                        "poisson_iterations"},
+                       {"", "", "", "", "s", "s", "s", "s", "s", "s", "", "", ""});
+    double best_fraction = 0.0;
+    for (int threads : thread_counts) {
+#if !defined(RBFIB_BACKEND_CUDA)
+    omp_set_num_threads(threads);
+#endif
     // 1. triad
     const index_t nt = index_t(1) << 24;
     dvec a(nt, 0.0), b(nt, 1.0), c(nt, 2.0);
@@ -94,18 +119,10 @@ int main(int argc, char** argv) {
     a.clear(); a.shrink_to_fit();
     b.clear(); b.shrink_to_fit();
     c.clear(); c.shrink_to_fit();
-    results["values"]["triad_bandwidth_GBps"] = bw_triad / 1e9;
-    log(opt, "triad: " + std::to_string(bw_triad / 1e9) + " GB/s");
-
-    std::vector<GridSpec> grids = {{"32^3", cube(32)}, {"64^3", cube(64)}};
-    if (!quick) {
-      grids.push_back({"128^3", cube(128)});
-      grids.push_back({"80x60x80 (whole blood)", whole_blood()});
-    }
+    triad["rows"].push(row({threads, t_triad, bw_triad / 1e9}));
+    log(opt, "threads " + std::to_string(threads) + ": triad " + std::to_string(bw_triad / 1e9) + " GB/s");
 
     // 2. stencil bandwidth
-    Json bw = table({"grid", "unknowns", "seconds", "bandwidth_GBps", "fraction_of_triad"}, {"", "", "s", "GB/s", ""});
-    double best_fraction = 0.0;
     for (const GridSpec& g : grids) {
       const Box box = g.grid.component(1);
       StaggeredLaplacian L(box, Correction::appendix_a);
@@ -115,17 +132,12 @@ int main(int argc, char** argv) {
       const double t = median_seconds(reps, [&] { L.apply(u, out, 1.0, -0.5); });
       const double bwl = 2.0 * 8.0 * double(box.size()) / t;
       best_fraction = std::max(best_fraction, bwl / bw_triad);
-      bw["rows"].push(row({g.name, double(box.size()), t, bwl / 1e9, bwl / bw_triad}));
+      bw["rows"].push(row({threads, g.name, double(box.size()), t, bwl / 1e9, bwl / bw_triad}));
       log(opt, "laplacian apply " + g.name + ": " + std::to_string(bwl / 1e9) + " GB/s (" +
                    std::to_string(100 * bwl / bw_triad) + "% of triad)");
     }
-    results["tables"]["stencil_bandwidth"] = bw;
 
     // 3. solver steps
-    Json steps = table({"grid", "integrator", "unknowns", "seconds", "advection_seconds", "helmholtz_seconds",
-                        "poisson_seconds", "projection_seconds", "other_seconds", "poisson_share", "helmholtz_iterations",
-                        "poisson_iterations"},
-                       {"", "", "", "s", "s", "s", "s", "s", "s", "", "", ""});
     for (const GridSpec& g : grids)
       for (TimeIntegrator ti : {TimeIntegrator::backward_forward_euler, TimeIntegrator::peskin_two_stage}) {
         NavierStokesOptions o;
@@ -170,13 +182,16 @@ int main(int argc, char** argv) {
         }
         const double T = median(tot), P = median(poi);
         const char* iname = ti == TimeIntegrator::backward_forward_euler ? "BFE" : "Peskin";
-        steps["rows"].push(row({g.name, iname, double(g.grid.cells[0]) * g.grid.cells[1] * g.grid.cells[2], T, median(adv),
+        steps["rows"].push(row({threads, g.name, iname, double(g.grid.cells[0]) * g.grid.cells[1] * g.grid.cells[2], T, median(adv),
                                 median(hel), P, median(pro), median(oth), P / T, median(hit), median(pit)}));
         std::ostringstream m;
-        m << g.name << " " << iname << ": " << T << " s/step (advection " << median(adv) << ", helmholtz " << median(hel)
+        m << "threads " << threads << ", " << g.name << " " << iname << ": " << T << " s/step (advection " << median(adv) << ", helmholtz " << median(hel)
           << ", poisson " << P << " = " << 100 * P / T << "%, projection " << median(pro) << ")";
         log(opt, m.str());
       }
+    }
+    results["tables"]["triad"] = triad;
+    results["tables"]["stencil_bandwidth"] = bw;
     results["tables"]["step_times"] = steps;
     results["values"]["best_stencil_fraction_of_triad"] = best_fraction;
     write_results(opt, results);
