@@ -78,11 +78,11 @@ int main(int argc, char** argv) {
     const int tz = quick ? 4 : 0;  // Taylor-Green z cells (0: n)
     std::vector<Spec> specs = {
         {"taylor_green", quick ? std::vector<int>{8, 16, 32} : std::vector<int>{8, 16, 32, 64},
-         [&](int n) { return taylor_green(n, tz ? tz : n); }, 4e-7, 8e-7, 16, 8e-7, quick ? 4 : 5},
+         [&](int n) { return taylor_green(n, tz ? tz : n); }, 4e-7, 8e-7, 16, 8e-7, quick ? 3 : 5},
         {"couette", quick ? std::vector<int>{15, 30, 60} : std::vector<int>{15, 30, 60, 120},
-         [&](int n) { return couette(n, 4); }, 1e-6, 1e-6, 30, 2e-6, quick ? 4 : 5},
+         [&](int n) { return couette(n, 4); }, 1e-6, 1e-6, 30, 2e-6, quick ? 3 : 5},
         {"manufactured", quick ? std::vector<int>{8, 16, 32} : std::vector<int>{8, 16, 32, 64},
-         [&](int n) { return manufactured(n); }, 8e-3, 1e-2, 16, 2e-2, quick ? 4 : 5},
+         [&](int n) { return manufactured(n); }, 8e-3, 1e-2, 16, 2e-2, quick ? 3 : 5},
     };
 
     // 1. spatial orders; 5. speed versus error
@@ -170,7 +170,7 @@ int main(int argc, char** argv) {
             });
           StepStats st;
           double secs = 0;
-          const int steps = 3;
+          const int steps = quick ? 2 : 4;
           double helm = 0, pois = 0;
           int hn = 0, pn = 0;
           double umax = 0;

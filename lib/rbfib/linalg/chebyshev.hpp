@@ -19,6 +19,23 @@
 
 namespace rbfib {
 
+namespace kernels {
+/// y = s x
+struct ChebyshevScale {
+  const double* x;
+  double s;
+  double* y;
+  RBFIB_HD void operator()(index_t i) const { y[i] = s * x[i]; }
+};
+/// d = c1 d + c2 r
+struct ChebyshevDirection {
+  const double* r;
+  double c1, c2;
+  double* d;
+  RBFIB_HD void operator()(index_t i) const { d[i] = c1 * d[i] + c2 * r[i]; }
+};
+}  // namespace kernels
+
 struct ChebyshevBounds {
   double lambda_min = 0.0;  ///< lambda_1
   double lambda_max = 0.0;  ///< lambda_2
@@ -74,12 +91,7 @@ class ChebyshevIteration {
       blas::axpy(-1.0, q_, r_);
     }
     // d = r / theta
-    {
-      const double* pr = ptr(r_);
-      double* pd = ptr(d_);
-      const double s = 1.0 / theta;
-      for_each_index(n, [=] RBFIB_HD (index_t i) { pd[i] = s * pr[i]; });
-    }
+    for_each_index(n, kernels::ChebyshevScale{ptr(r_), 1.0 / theta, ptr(d_)});
     double rho = 1.0 / sigma;
     for (int k = 1; k <= steps_; ++k) {
       blas::axpy(1.0, d_, x);
@@ -88,9 +100,7 @@ class ChebyshevIteration {
       blas::axpy(-1.0, q_, r_);
       const double rho_new = 1.0 / (2.0 * sigma - rho);
       const double c1 = rho_new * rho, c2 = 2.0 * rho_new / delta;
-      const double* pr = ptr(r_);
-      double* pd = ptr(d_);
-      for_each_index(n, [=] RBFIB_HD (index_t i) { pd[i] = c1 * pd[i] + c2 * pr[i]; });
+      for_each_index(n, kernels::ChebyshevDirection{ptr(r_), c1, c2, ptr(d_)});
       rho = rho_new;
     }
   }
