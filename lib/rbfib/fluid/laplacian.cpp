@@ -6,14 +6,19 @@ namespace rbfib {
 
 StaggeredLaplacian::StaggeredLaplacian(const Box& box, Correction correction) : box_(box), correction_(correction) {
   box_.validate();
-  stencil_.shape = shape_of(box_);
+  stencil_ = kernels::make_laplacian_stencil(shape_of(box_));
   for (int d = 0; d < box_.dims; ++d) stencil_.axis[d] = make_stencil(box_.axes[d], correction);
 }
 
 void StaggeredLaplacian::apply(const dvec& u, dvec& out, double alpha, double beta) const {
   require(index_t(u.size()) == size(), "laplacian.input.size", u.size(), "does not match the box");
   out.resize(u.size());
-  for_each_index(size(), kernels::HelmholtzApply{stencil_, ptr(u), ptr(out), alpha, beta});
+  const kernels::HelmholtzApply k{stencil_, ptr(u), ptr(out), alpha, beta};
+#if defined(RBFIB_BACKEND_CUDA)
+  for_each_index(size(), k);
+#else
+  for_each_index(size() / stencil_.shape.n[0], kernels::HelmholtzApplyRows{k});
+#endif
 }
 
 void StaggeredLaplacian::add_boundary(const BoundaryData& gamma, dvec& out, double beta) const {
