@@ -87,7 +87,7 @@ RunResult run(const Problem& problem, TimeIntegrator integrator, double dt) {
   NavierStokesSolver ns(problem.grid, problem.fluid, opt, problem.boundary);
   const int dims = problem.grid.dims;
   FluidState s = ns.zero_state(problem.t0);
-  s.u = sample_field(ns, problem.velocity, problem.t0);
+  if (!problem.from_rest) s.u = sample_field(ns, problem.velocity, problem.t0);
   if (problem.pressure)
     s.p = sample(ns.operators().scalar_box(), [&](double x, double y, double z) { return problem.pressure(problem.t0, x, y, z); });
   double hmin = problem.grid.h(0);

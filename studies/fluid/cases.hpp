@@ -21,6 +21,7 @@ struct Problem {
   Field force;        ///< body force, empty: none
   BoundaryVelocity boundary;
   double t0 = 0.0, t1 = 0.0;
+  bool from_rest = false;  ///< start from u = 0 instead of the exact velocity at t0
 };
 
 struct RunResult {
