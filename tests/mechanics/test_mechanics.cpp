@@ -63,13 +63,7 @@ struct ShCell {
     Z = unit_sphere_jets(eval);
   }
   /// I^T F^: the generalized force on the data sites, to compare with -dE/dX_data.
-  std::vector<double> project(const std::vector<double>& Fhat) const {
-    std::vector<double> g(3 * interp.size(), 0.0);
-    for (index_t i = 0; i < ops->n_sample(); ++i)
-      for (index_t j = 0; j < ops->n_data(); ++j)
-        for (int d = 0; d < 3; ++d) g[3 * j + d] += ops->id(i, j) * Fhat[3 * i + d];
-    return g;
-  }
+  std::vector<double> project(const std::vector<double>& Fhat) const { return transpose_identity(*ops, Fhat); }
 };
 }  // namespace
 

@@ -5,9 +5,8 @@
 namespace rbfib::surface {
 
 std::vector<Jet> jets_from_operators(const SurfaceOperators& ops, const std::vector<double>& X_data) {
-  const DenseMatrix* M[6] = {&ops.id, &ops.d_l, &ops.d_t, &ops.d_ll, &ops.d_lt, &ops.d_tt};
   std::vector<double> out[6];
-  for (int q = 0; q < 6; ++q) apply_to_points(*M[q], X_data, out[q]);
+  apply_operators(ops, X_data, out);
   std::vector<Jet> jets(static_cast<std::size_t>(ops.n_sample()));
   for (index_t i = 0; i < ops.n_sample(); ++i)
     for (int d = 0; d < 3; ++d) {
@@ -24,8 +23,14 @@ std::vector<Jet> jets_from_operators(const SurfaceOperators& ops, const std::vec
 
 std::vector<ScalarJet> scalar_jets_from_operators(const SurfaceOperators& ops, const std::vector<double>& u_data) {
   const DenseMatrix* M[6] = {&ops.id, &ops.d_l, &ops.d_t, &ops.d_ll, &ops.d_lt, &ops.d_tt};
-  std::vector<double> out[6];
-  for (int q = 0; q < 6; ++q) apply_to_scalars(*M[q], u_data, out[q]);
+  std::vector<double> out[6], c;
+  const std::vector<double>* in = &u_data;
+  if (ops.factored()) {
+    c.resize(u_data.size());
+    solve_coefficients(ops, u_data.data(), 1, c.data());
+    in = &c;
+  }
+  for (int q = 0; q < 6; ++q) apply_to_scalars(*M[q], *in, out[q]);
   std::vector<ScalarJet> jets(static_cast<std::size_t>(ops.n_sample()));
   for (index_t i = 0; i < ops.n_sample(); ++i)
     jets[i] = ScalarJet{out[0][i], out[1][i], out[2][i], out[3][i], out[4][i], out[5][i]};

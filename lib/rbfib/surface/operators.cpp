@@ -45,8 +45,8 @@ std::shared_ptr<const SurfaceOperators> sh_operators(const SphereSites& interp, 
   Mat Y;
   Mat* one[6] = {&Y, nullptr, nullptr, nullptr, nullptr, nullptr};
   harmonic_matrices(interp, M, one);
-  // The factorization, computed once (of Y^T: the operators solve Y^T L^T = E^T).
-  Eigen::PartialPivLU<Mat> lu(Y.transpose());
+  // The factorization, computed once.
+  Eigen::PartialPivLU<Mat> lu(Y);
   auto ops = std::make_shared<SurfaceOperators>();
   ops->condition_estimate = rcond_of(lu);
   if (!(ops->condition_estimate > 1e-14))
@@ -56,12 +56,76 @@ std::shared_ptr<const SurfaceOperators> sh_operators(const SphereSites& interp, 
   Mat E[6];
   Mat* all[6] = {&E[0], &E[1], &E[2], &E[3], &E[4], &E[5]};
   harmonic_matrices(eval, M, all);
-  // L = E Y^{-1}  <=>  Y^T L^T = E^T
+  // Factored: P Y = L U and the harmonics E_q at the sample sites.
+  ops->lu = to_dense(lu.matrixLU());
+  {
+    // Eigen's P maps row i of Y to row indices[i] of P Y.
+    const auto& idx = lu.permutationP().indices();
+    ops->perm.assign(static_cast<std::size_t>(idx.size()), 0);
+    for (index_t i = 0; i < idx.size(); ++i) ops->perm[idx[i]] = i;
+  }
   DenseMatrix* dst[6] = {&ops->id, &ops->d_l, &ops->d_t, &ops->d_ll, &ops->d_lt, &ops->d_tt};
-  for (int q = 0; q < 6; ++q) *dst[q] = to_dense(lu.solve(E[q].transpose()).transpose());
+  for (int q = 0; q < 6; ++q) *dst[q] = to_dense(E[q]);
   ops->description = "spherical harmonics, degree " + to_text(M) + ", m = " + to_text(interp.size()) +
                      " interpolation sites, n = " + to_text(eval.size()) + " evaluation sites";
   return ops;
+}
+
+void solve_coefficients(const SurfaceOperators& ops, const double* x, index_t stride, double* c) {
+  // c = U^{-1} L^{-1} P x, columnwise for `stride` interleaved right-hand sides.
+  const index_t m = ops.lu.rows;
+  for (index_t s = 0; s < stride; ++s) {
+    for (index_t i = 0; i < m; ++i) {
+      double v = x[ops.perm[i] * stride + s];
+      for (index_t k = 0; k < i; ++k) v -= ops.lu(i, k) * c[k * stride + s];
+      c[i * stride + s] = v;
+    }
+    for (index_t i = m - 1; i >= 0; --i) {
+      double v = c[i * stride + s];
+      for (index_t k = i + 1; k < m; ++k) v -= ops.lu(i, k) * c[k * stride + s];
+      c[i * stride + s] = v / ops.lu(i, i);
+    }
+  }
+}
+
+void apply_operators(const SurfaceOperators& ops, const std::vector<double>& X, std::vector<double> out[6]) {
+  const DenseMatrix* M[6] = {&ops.id, &ops.d_l, &ops.d_t, &ops.d_ll, &ops.d_lt, &ops.d_tt};
+  if (ops.factored()) {
+    require(static_cast<index_t>(X.size()) == 3 * ops.n_data(), "points.size()", X.size(),
+            "must be 3 x data sites (" + to_text(ops.n_data()) + ")");
+    std::vector<double> c(X.size());
+    solve_coefficients(ops, X.data(), 3, c.data());
+    for (int q = 0; q < 6; ++q) apply_to_points(*M[q], c, out[q]);
+  } else {
+    for (int q = 0; q < 6; ++q) apply_to_points(*M[q], X, out[q]);
+  }
+}
+
+std::vector<double> transpose_identity(const SurfaceOperators& ops, const std::vector<double>& F) {
+  require(static_cast<index_t>(F.size()) == 3 * ops.n_sample(), "F.size()", F.size(),
+          "must be 3 x sample sites (" + to_text(ops.n_sample()) + ")");
+  std::vector<double> g(static_cast<std::size_t>(3 * ops.id.cols), 0.0);
+  for (index_t i = 0; i < ops.id.rows; ++i)
+    for (index_t j = 0; j < ops.id.cols; ++j)
+      for (int d = 0; d < 3; ++d) g[3 * j + d] += ops.id(i, j) * F[3 * i + d];
+  if (!ops.factored()) return g;
+  // I = E Y^{-1}: I^T F = Y^{-T} (E^T F), with Y^T = U^T L^T P.
+  const index_t m = ops.lu.rows;
+  std::vector<double> h(g.size(), 0.0), t(g.size(), 0.0);
+  for (int d = 0; d < 3; ++d) {
+    for (index_t i = 0; i < m; ++i) {  // U^T y = g
+      double v = g[3 * i + d];
+      for (index_t k = 0; k < i; ++k) v -= ops.lu(k, i) * t[3 * k + d];
+      t[3 * i + d] = v / ops.lu(i, i);
+    }
+    for (index_t i = m - 1; i >= 0; --i) {  // L^T z = y
+      double v = t[3 * i + d];
+      for (index_t k = i + 1; k < m; ++k) v -= ops.lu(k, i) * t[3 * k + d];
+      t[3 * i + d] = v;
+    }
+    for (index_t i = 0; i < m; ++i) h[3 * ops.perm[i] + d] = t[3 * i + d];  // P^T z
+  }
+  return h;
 }
 
 std::vector<double> sh_coefficients(const SphereSites& interp, int M, const std::vector<double>& values) {

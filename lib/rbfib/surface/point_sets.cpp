@@ -44,6 +44,9 @@ SphereSites toroidal_spiral(index_t N) {
 MaxDetResult max_determinant_points(int M, int max_iterations) {
   require(M >= 0, "harmonic degree M", M, "must be >= 0");
   const int m = sh_count(M);
+  // Small dense matrices: threading them only costs (and contends with the caller's threads).
+  const int threads = Eigen::nbThreads();
+  Eigen::setNbThreads(1);
   MaxDetResult r;
   r.sites = bauer_spiral(m);
   std::vector<double> row(m), rl(m), rt(m);
@@ -117,6 +120,7 @@ MaxDetResult max_determinant_points(int M, int max_iterations) {
   }
   r.log_det = f;
   r.iterations = it;
+  Eigen::setNbThreads(threads);
   return r;
 }
 
