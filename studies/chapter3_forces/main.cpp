@@ -166,6 +166,7 @@ int main(int argc, char** argv) {
     P["shvd_rbf_evaluation_n"] = static_cast<double>(n_shvd);
     P["rbf_basis"] = "PHS r^7 + real harmonics of degree <= 5";
     P["timing_repeats"] = repeats;
+    results["values"]["perturbed_Vf"] = pert.Vf;
     st::log(opt, "Vf = " + to_text(pert.Vf) + " (paper: ~5.14); scale " + st::to_string(opt.scale));
     Json& T = results["tables"];
     Json& V = results["values"];
@@ -337,15 +338,26 @@ int main(int argc, char** argv) {
     {
       Json t = table({"power", "n", "sqrt_n", "quad_err", "min_weight", "rcond", "I_phi"}, {"", "", "", "", "", "", ""});
       bool all_invertible = true;
+      std::vector<double> fit_x, fit_e;
       for (int p : {1, 3, 5, 7, 9}) {
         for (index_t n : quad_n) {
           const SphereSites s = bauer_spiral(n);
           double err = NAN, wmin = NAN, rc = 0, Iphi = NAN;
           try {
             const RbfWeights q = rbf_sphere_weights(s, p);
-            double I = 0;
-            for (index_t i = 0; i < n; ++i) I += q.w[i] * std::exp(std::cos(s.lambda[i]) * std::cos(s.theta[i]));
-            err = std::abs(I - 4 * pi * std::sinh(1.0));
+            // worst error over f = exp(a . x) for four directions a (exact: 4 pi sinh|a| / |a|)
+            const double dirs[4][3] = {{1, 0, 0}, {0, 0, 1}, {0.6, 0.6, 0.52915026221291817}, {0.3, -0.8, 0.5}};
+            err = 0;
+            for (const auto& a : dirs) {
+              const double na = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+              double I = 0;
+              for (index_t i = 0; i < n; ++i) {
+                double x[3];
+                unit_sphere_point(s.lambda[i], s.theta[i], x);
+                I += q.w[i] * std::exp(a[0] * x[0] + a[1] * x[1] + a[2] * x[2]);
+              }
+              err = std::max(err, std::abs(I - 4 * pi * std::sinh(na) / na));
+            }
             wmin = *std::min_element(q.w.begin(), q.w.end());
             rc = q.rcond;
             Iphi = q.I_phi;
@@ -353,12 +365,17 @@ int main(int argc, char** argv) {
             if (p > 1) all_invertible = false;
             st::log(opt, std::string("r^") + to_text(p) + ", n = " + to_text(n) + ": " + ex.what());
           }
+          if (p == 1 && !std::isnan(err)) {
+            fit_x.push_back(std::sqrt(double(n)));
+            fit_e.push_back(err);
+          }
           t["rows"].push(row({double(p), double(n), std::sqrt(double(n)), std::isnan(err) ? Json() : Json(err),
                               std::isnan(wmin) ? Json() : Json(wmin), rc, std::isnan(Iphi) ? Json() : Json(Iphi)}));
         }
       }
       T["rbf_quadrature"] = t;
       V["rbf_quadrature_invertible_k1_to_4"] = all_invertible ? 1.0 : 0.0;
+      V["rbf_quadrature_fit_order_phi_r"] = power_law_order(fit_x, fit_e);
       st::log(opt, "RBF quadrature done");
     }
 
