@@ -187,6 +187,34 @@ TEST(ContinuousForce, DegenerateSurfacesRaiseNamedErrors) {
   EXPECT_THROW(elastic_force_density("rbc-3", X, Z, EnergyDensity::skalak(1, 1)), NumericalError);
 }
 
+TEST(Dissipation, IsMinusTheVelocityDerivativeOfTheRayleighFunctional) {
+  // Phi(U_data) = sum_i W_dissip,i dA0_i is quadratic in U, so central differences are exact up to
+  // rounding; -dPhi/dU_data = I^T F^ up to the spectrally small quadrature error (1e-7 relative).
+  ShCell cell;
+  const PerturbedEllipsoid shape{1.1, 0.9, 1.0, 0.1, 1.0};
+  const std::vector<double> X0 = shape.points(cell.interp);
+  const std::vector<Jet> XJ = jets_from_operators(*cell.ops, X0);
+  std::vector<double> U0(X0.size());
+  for (std::size_t i = 0; i < U0.size(); ++i) U0[i] = std::sin(1.7 * i) + 0.3 * X0[i] * X0[i];
+  auto phi = [&](const std::vector<double>& U) {
+    return dissipation("fd", XJ, jets_from_operators(*cell.ops, U), cell.Z, 2.0, cell.w);
+  };
+  const std::vector<double> g = fd_gradient(phi, U0, 1e-4);
+  const std::vector<double> p = cell.project(
+      forces_from_density(dissipative_force_density("fd", XJ, jets_from_operators(*cell.ops, U0), cell.Z, 2.0), cell.w));
+  const double scale = max_abs(p);
+  ASSERT_GT(scale, 1e-3);
+  for (std::size_t i = 0; i < g.size(); ++i) EXPECT_NEAR(p[i], -g[i], 1e-7 * scale) << i;
+  // A rigid rotation U = w x X dissipates nothing.
+  std::vector<double> R(X0.size());
+  for (std::size_t i = 0; i < R.size(); i += 3) {
+    R[i] = -0.5 * X0[i + 1];
+    R[i + 1] = 0.5 * X0[i];
+    R[i + 2] = 0.0;
+  }
+  EXPECT_LT(std::abs(phi(R)), 1e-14);
+}
+
 TEST(Bending, SphereIsInEquilibriumWithAndWithoutSpontaneousCurvature) {
   // Eq. (84): 8H^3 - 4HR = 0 and lap H = 0 on a sphere; with H' = H the energy density vanishes.
   ShCell cell;

@@ -321,3 +321,18 @@ TEST(Triangulation, ClosedOutwardTriangulationOfTheSpiral) {
   EXPECT_LT(area, 4 * pi);
   EXPECT_GT(area, 4 * pi * (1 - 4.0 / n));
 }
+
+TEST(Interpolation, PlateletBasisWithOnlyAConstantIsInvertibleAndReproducesConstants) {
+  // Dissertation Sec. 2.3.1: r^7 with just the constant does not guarantee a unique interpolant,
+  // but eq. (2.17) is invertible on the spiral; constants (the augmentation) are reproduced, and
+  // their derivatives vanish, up to conditioning (1e-9).
+  const SphereSites data = bauer_spiral(400), sample = bauer_spiral(123);
+  auto ops = rbf_operators(data, sample, PhsBasis{7, 0});
+  EXPECT_GT(ops->condition_estimate, 1e-18);
+  const std::vector<ScalarJet> J = scalar_jets_from_operators(*ops, std::vector<double>(400, 2.5));
+  for (const auto& j : J) {
+    EXPECT_NEAR(j.u, 2.5, 1e-9);
+    EXPECT_NEAR(j.ul, 0.0, 1e-8);
+    EXPECT_NEAR(j.utt, 0.0, 1e-7);
+  }
+}

@@ -112,6 +112,68 @@ RBFIB_HD inline ForceAtSite elastic_force_density(const Jet& X, const Jet& Z, co
   return r;
 }
 
+/// Membrane dissipation (dissertation eq. 2.14), W = nu/2 (ldot1^2/l1^2 + ldot2^2/l2^2), written
+/// frame-free as W = nu/8 tr((G^{-1} Gdot)^2), Gdot_ab = U_a . X_b + X_a . U_b (U = dX/dt): equal
+/// to eq. (2.14) when the principal directions do not rotate. Its viscous force density is
+/// F = -dPhi/dU of Phi = int W dA0, in the divergence form of eq. (35) with
+///   S_d = 2 dW/dGdot = nu/2 G^{-1} Gdot G^{-1}.
+/// X: position jet; U: velocity jet (same layout); Z: reference jet.
+RBFIB_HD inline ForceAtSite dissipative_force_density(const Jet& X, const Jet& U, const Jet& Z, double nu) {
+  ForceAtSite r{{0, 0, 0}, 0, 0, 0, force_ok};
+  double G[2][2], dG[2][2][2], G0[2][2], dG0[2][2][2];
+  metric_and_derivatives(X, G, dG);
+  metric_and_derivatives(Z, G0, dG0);
+  const double det = G[0][0] * G[1][1] - G[0][1] * G[1][0];
+  const double det0 = G0[0][0] * G0[1][1] - G0[0][1] * G0[1][0];
+  if (!(det > 0) || !(det0 > 0)) {
+    r.status = force_degenerate_metric;
+    return r;
+  }
+  double Gi[2][2];
+  inverse2(G, det, Gi);
+  const double* Xd[2] = {X.xl, X.xt};
+  const double* Xdd[2][2] = {{X.xll, X.xlt}, {X.xlt, X.xtt}};
+  const double* Ud[2] = {U.xl, U.xt};
+  const double* Udd[2][2] = {{U.xll, U.xlt}, {U.xlt, U.xtt}};
+  double Gd[2][2], dGd[2][2][2];
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) {
+      Gd[a][b] = surface::dot3(Ud[a], Xd[b]) + surface::dot3(Xd[a], Ud[b]);
+      for (int j = 0; j < 2; ++j)
+        dGd[j][a][b] = surface::dot3(Udd[a][j], Xd[b]) + surface::dot3(Ud[a], Xdd[b][j]) +
+                       surface::dot3(Xdd[a][j], Ud[b]) + surface::dot3(Xd[a], Udd[b][j]);
+    }
+  // A = G^{-1} Gdot G^{-1}; W = nu/8 tr((G^{-1} Gdot)^2) = nu/8 tr(A Gdot)
+  auto triple = [](const double P[2][2], const double Q[2][2], const double R[2][2], double out[2][2]) {
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) {
+        double s = 0;
+        for (int k = 0; k < 2; ++k)
+          for (int l = 0; l < 2; ++l) s += P[i][k] * Q[k][l] * R[l][j];
+        out[i][j] = s;
+      }
+  };
+  double A[2][2];
+  triple(Gi, Gd, Gi, A);
+  r.W = nu / 8 * trace_ab(A, Gd);
+  double G0i[2][2];
+  inverse2(G0, det0, G0i);
+  for (int j = 0; j < 2; ++j) {
+    double dGi[2][2], t1[2][2], t2[2][2], t3[2][2];
+    minus_aba(Gi, dG[j], dGi);
+    triple(dGi, Gd, Gi, t1);
+    triple(Gi, dGd[j], Gi, t2);
+    triple(Gi, Gd, dGi, t3);
+    const double dlng0 = 0.5 * trace_ab(G0i, dG0[j]);
+    for (int k = 0; k < 2; ++k) {
+      const double S = nu / 2 * A[k][j];
+      const double dS = nu / 2 * (t1[k][j] + t2[k][j] + t3[k][j]);
+      for (int d = 0; d < 3; ++d) r.F[d] += (dS + S * dlng0) * Xd[k][d] + S * Xdd[k][j][d];
+    }
+  }
+  return r;
+}
+
 /// Bending force density per unit reference area (eq. 84 generalized to W = 2 kappa (H - H')^2):
 ///   F = -2 kappa sqrt(det G / det G0) [ lap_s H + 2 (H - H')(H^2 + H' H - K) ] n,   K = R/2.
 /// With H' = 0 and kappa = 2 k_bend this is eq. (84). lap_H is the surface Laplacian of H.

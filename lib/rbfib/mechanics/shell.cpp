@@ -103,6 +103,34 @@ double bending_energy(const std::string& cell, const std::vector<Jet>& X, const 
   return E;
 }
 
+std::vector<double> dissipative_force_density(const std::string& cell, const std::vector<Jet>& X,
+                                              const std::vector<Jet>& U, const std::vector<Jet>& Z, double nu) {
+  require(nu >= 0, "membrane viscosity nu (dyn s/cm)", nu, "must be >= 0");
+  require_same(cell, X.size(), Z.size(), "reference jets");
+  require_same(cell, U.size(), X.size(), "velocity jets");
+  std::vector<double> F(3 * X.size());
+  for (std::size_t i = 0; i < X.size(); ++i) {
+    const ForceAtSite r = dissipative_force_density(X[i], U[i], Z[i], nu);
+    check_status(cell, i, r);
+    for (int d = 0; d < 3; ++d) F[3 * i + d] = r.F[d];
+  }
+  return F;
+}
+
+double dissipation(const std::string& cell, const std::vector<Jet>& X, const std::vector<Jet>& U,
+                   const std::vector<Jet>& Z, double nu, const std::vector<double>& dA0) {
+  require_same(cell, dA0.size(), X.size(), "weights");
+  require_same(cell, U.size(), X.size(), "velocity jets");
+  require_same(cell, Z.size(), X.size(), "reference jets");
+  double P = 0;
+  for (std::size_t i = 0; i < X.size(); ++i) {
+    const ForceAtSite r = dissipative_force_density(X[i], U[i], Z[i], nu);
+    check_status(cell, i, r);
+    P += r.W * dA0[i];
+  }
+  return P;
+}
+
 std::vector<double> tether_force_density(const std::vector<double>& X, const std::vector<double>& X_tether,
                                          const std::vector<double>& U, const std::vector<double>& U_tether,
                                          double k, double eta) {

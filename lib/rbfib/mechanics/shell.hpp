@@ -47,6 +47,15 @@ std::vector<double> bending_force_density(const std::string& cell, const surface
 double bending_energy(const std::string& cell, const std::vector<Jet>& X, const std::vector<Jet>& Z,
                       const BendingModel& model, const std::vector<double>& dA0);
 
+/// Viscous membrane force density (dissertation eq. 2.14, see force_kernels.hpp) from position
+/// jets X and velocity jets U at the sample sites; nu in dyn s/cm.
+std::vector<double> dissipative_force_density(const std::string& cell, const std::vector<Jet>& X,
+                                              const std::vector<Jet>& U, const std::vector<Jet>& Z, double nu);
+
+/// Rayleigh dissipation sum_i W_dissip,i dA0_i (erg/s).
+double dissipation(const std::string& cell, const std::vector<Jet>& X, const std::vector<Jet>& U,
+                   const std::vector<Jet>& Z, double nu, const std::vector<double>& dA0);
+
 /// Tethers and damped springs (dissertation eq. 2.10): W = k/2 |X - X'|^2 + eta/2 |U - U'|^2,
 /// force density F = -k (X - X') - eta (U - U'). All arrays 3 per site; U, U' may be empty (0).
 std::vector<double> tether_force_density(const std::vector<double>& X, const std::vector<double>& X_tether,
