@@ -336,7 +336,8 @@ int main(int argc, char** argv) {
 
     // ---- 7. RBF quadrature on the sphere (eq. 2.22) -------------------------------------------
     {
-      Json t = table({"power", "n", "sqrt_n", "quad_err", "min_weight", "rcond", "I_phi"}, {"", "", "", "", "", "", ""});
+      Json t = table({"power", "n", "sqrt_n", "quad_err", "min_weight", "rcond", "I_phi", "I_phi_rel_err"},
+                     {"", "", "", "", "", "", "", ""});
       bool all_invertible = true;
       std::vector<double> fit_x, fit_e;
       for (int p : {1, 3, 5, 7, 9}) {
@@ -369,8 +370,11 @@ int main(int argc, char** argv) {
             fit_x.push_back(std::sqrt(double(n)));
             fit_e.push_back(err);
           }
+          // exact: int_{S^2} |x - y|^p dA(x) = 2 pi int_0^2 r^(p+1) dr = 2 pi 2^(p+2) / (p+2)
+          const double exact = 2 * pi * std::pow(2.0, p + 2) / (p + 2);
           t["rows"].push(row({double(p), double(n), std::sqrt(double(n)), std::isnan(err) ? Json() : Json(err),
-                              std::isnan(wmin) ? Json() : Json(wmin), rc, std::isnan(Iphi) ? Json() : Json(Iphi)}));
+                              std::isnan(wmin) ? Json() : Json(wmin), rc, std::isnan(Iphi) ? Json() : Json(Iphi),
+                              std::isnan(Iphi) ? Json() : Json(std::abs(-Iphi - exact) / exact)}));
         }
       }
       T["rbf_quadrature"] = t;

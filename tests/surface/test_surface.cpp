@@ -336,3 +336,19 @@ TEST(Interpolation, PlateletBasisWithOnlyAConstantIsInvertibleAndReproducesConst
     EXPECT_NEAR(j.utt, 0.0, 1e-7);
   }
 }
+
+TEST(Interpolation, SingularInterpolationMatrixIsANumericalError) {
+  // 9 distinct sites on the equator cannot determine the degree-2 harmonics (Y_1^0 vanishes
+  // there): eq. (86) is singular and must be reported, not solved into NaN operators.
+  SphereSites s;
+  for (int i = 0; i < 9; ++i) {
+    s.lambda.push_back(-pi + 2 * pi * (i + 0.5) / 9);
+    s.theta.push_back(0.0);
+  }
+  try {
+    sh_operators(s, bauer_spiral(10), 2);
+    FAIL() << "expected NumericalError";
+  } catch (const NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("eq. 86"), std::string::npos);
+  }
+}
