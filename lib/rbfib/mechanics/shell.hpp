@@ -9,6 +9,9 @@
 //   force F^_i = F_i dA0_i                           (eq. 52)
 //   energy E = sum_i W_i dA0_i                       (eq. 16 under the quadrature)
 // Degenerate input raises NumericalError naming the cell, the site and the cause.
+// Units (CGS): X in cm, moduli in dyn/cm, dA0 in cm^2 (reference area), force density in
+// dyn/cm^2 (per unit reference area), force F^ in dyn, energy in erg. Arrays of points or
+// forces hold 3 doubles per site, site-major.
 #include "rbfib/mechanics/force_kernels.hpp"
 #include "rbfib/surface/geometry.hpp"
 

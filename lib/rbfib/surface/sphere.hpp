@@ -5,6 +5,7 @@
 // [-pi/2, pi/2]; Chapter 2 calls the same pair (theta, phi). The unit-sphere map is
 //   chi(lambda, theta) = (cos lambda cos theta, sin lambda cos theta, sin theta),
 // with metric det G0 = cos^2 theta (zero at the poles, which evaluation sites must avoid).
+// Angles in radians; the sphere is dimensionless (cell shapes carry the length unit, cm).
 #include "rbfib/core/exec.hpp"
 
 #include <cmath>
