@@ -352,3 +352,34 @@ TEST(Interpolation, SingularInterpolationMatrixIsANumericalError) {
     EXPECT_NE(std::string(e.what()).find("eq. 86"), std::string::npos);
   }
 }
+
+TEST(Quadrature, ReferenceShapeWeightsIntegrateTheRedCellArea) {
+  // Eq. (51) on the Evans-Fung red cell of dissertation Sec. 2.2 (R0 = 3.91 um = 3.91e-4 cm):
+  // X = R0 (cos l cos t, sin l cos t, h(t)), h = z(cos^2 t) sin t, z(r) = 0.105 + r - 0.56 r^2.
+  // X_l . X_t = 0, so det G0 = R0^4 cos^2 t (sin^2 t + h'(t)^2). The area from RBF sphere weights
+  // (eq. 2.22, r^3, n = 1600) times eq. (51) must match a 60 x 120 Gauss product rule to the RBF
+  // rule's accuracy on this smooth integrand (1e-6 relative).
+  const double R0 = 3.91e-4;
+  auto det_g0 = [R0](double t) {
+    const double c = std::cos(t), s = std::sin(t), r = c * c;
+    const double z = 0.105 + r - 0.56 * r * r, dz = 1 - 1.12 * r;
+    const double dh = dz * (-2 * c * s) * s + z * c;
+    return std::pow(R0, 4) * c * c * (s * s + dh * dh);
+  };
+  auto area = [&](const SphereSites& s, const std::vector<double>& w_sphere) {
+    std::vector<double> det(s.size());
+    for (index_t i = 0; i < s.size(); ++i) det[i] = det_g0(s.theta[i]);
+    const std::vector<double> w = reference_shape_weights(s, w_sphere, det);
+    double A = 0;
+    for (double v : w) A += v;
+    return A;
+  };
+  std::vector<double> wg;
+  const SphereSites g = gauss_product_sites(60, 120, wg);
+  const double A_ref = area(g, wg);
+  const SphereSites s = bauer_spiral(1600);
+  const double A = area(s, rbf_sphere_weights(s, 3).w);
+  EXPECT_NEAR(A / A_ref, 1.0, 1e-6);
+  EXPECT_GT(A_ref, 1.2e-6);  // ~ 135 um^2: a red cell's area is 130-140 um^2
+  EXPECT_LT(A_ref, 1.5e-6);
+}
