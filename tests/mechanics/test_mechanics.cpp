@@ -91,8 +91,11 @@ TEST(Energy, DissertationAndPaperNeoHookeanAgreeAndVanishAtRest) {
   const auto b = EnergyDensity::neo_hookean_paper(2.0, 3.0);  // Gs = E, A = G/E
   for (double I1 : {-0.1, 0.4})
     for (double I2 : {-0.2, 0.3}) EXPECT_NEAR(a.evaluate(I1, I2).W, b.evaluate(I1, I2).W, 1e-14);
-  for (const auto& e : all_energies())
-    if (e.kind != EnergyKind::surface_tension) EXPECT_EQ(e.evaluate(0, 0).W, 0.0) << e.name();
+  for (const auto& e : all_energies()) {
+    if (e.kind != EnergyKind::surface_tension) {
+      EXPECT_EQ(e.evaluate(0, 0).W, 0.0) << e.name();
+    }
+  }
   EXPECT_FALSE(EnergyDensity::neo_hookean_paper(1, 1).evaluate(0, -1.5).valid);
 }
 
