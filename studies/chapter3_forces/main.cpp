@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
     const PerturbedEllipsoid pert = paper_perturbed_ellipsoid();
     const std::vector<Energy> energies = {{"tension", EnergyDensity::surface_tension(1.0)},
                                           {"neo-Hookean", EnergyDensity::neo_hookean_paper(1.0, 1.0)}};
-    const int repeats = 5;
+    const int repeats = 11;
 
     Json results = st::make_results(opt);
     Json& P = results["parameters"];
