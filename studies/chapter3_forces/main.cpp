@@ -9,7 +9,8 @@
 //   Fig. 3  the same on the perturbed ellipsoid: LDSM between 1st and 2nd order, SHVD spectral in m;
 //   plus    the RBF (PHS r^7 + harmonics of degree 5) reconstruction against n_d, the RBF
 //           quadrature of eq. (2.22) (3rd order for phi = r, invertible for r^(2k+1), k = 1..4),
-//           maximal-determinant-like points and their NNLS weights (eq. 45), and force-evaluation
+//           maximal-determinant-like points and their NNLS weights (eq. 45), mean curvature (eq. 76)
+//           against m and n_d, and force-evaluation
 //           time against force error for SHVD(m), RBF(n_d) and LDSM(n).
 //
 // Run:  build/studies/study_chapter3_forces --scale quick --out runs/chapter3_forces/quick
@@ -334,7 +335,36 @@ int main(int argc, char** argv) {
     }
     T["speed_vs_error"] = speed;
 
-    // ---- 7. RBF quadrature on the sphere (eq. 2.22) -------------------------------------------
+    // ---- 7. Mean curvature (eq. 76) on the perturbed ellipsoid: SHVD(m) and RBF(n_d) ----------
+    {
+      Json t = table({"method", "points", "sqrt_points", "H_err_inf", "H_rel_err"}, {"", "", "", "", ""});
+      const EvalSet& e = sets.at(n_shvd);
+      const std::vector<PointGeometry> ge = surface_geometry(pert.jets(e.sites), "exact");
+      auto push = [&](const std::string& method, double pts, const std::vector<Jet>& J) {
+        const std::vector<PointGeometry> g = surface_geometry(J, method);
+        double err = 0, scale = 0;
+        for (std::size_t i = 0; i < g.size(); ++i) {
+          err = std::max(err, std::abs(g[i].H - ge[i].H));
+          scale = std::max(scale, std::abs(ge[i].H));
+        }
+        t["rows"].push(row({method, pts, std::sqrt(pts), err, err / scale}));
+        return err / scale;
+      };
+      for (int M : M_list) {
+        auto ops = sh_operators(md.at(M), e.sites, M);
+        const double r = push("SHVD", sh_count(M), jets_from_operators(*ops, pert.points(md.at(M))));
+        if (M == 14) V["shvd_m225_H_rel_err"] = r;
+      }
+      for (index_t nd : nd_list) {
+        const SphereSites data = bauer_spiral(nd);
+        auto ops = rbf_operators(data, e.sites, PhsBasis{7, 5});
+        push("RBF", double(nd), jets_from_operators(*ops, pert.points(data)));
+      }
+      T["mean_curvature"] = t;
+      st::log(opt, "mean curvature done");
+    }
+
+    // ---- 8. RBF quadrature on the sphere (eq. 2.22) -------------------------------------------
     {
       Json t = table({"power", "n", "sqrt_n", "quad_err", "min_weight", "rcond", "I_phi", "I_phi_rel_err"},
                      {"", "", "", "", "", "", "", ""});
