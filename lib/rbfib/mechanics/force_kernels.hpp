@@ -43,6 +43,17 @@ RBFIB_HD inline void minus_aba(const double A[2][2], const double B[2][2], doubl
     }
 }
 
+/// out = P Q R (2 x 2).
+RBFIB_HD inline void triple_product(const double P[2][2], const double Q[2][2], const double R[2][2], double out[2][2]) {
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      double s = 0;
+      for (int k = 0; k < 2; ++k)
+        for (int l = 0; l < 2; ++l) s += P[i][k] * Q[k][l] * R[l][j];
+      out[i][j] = s;
+    }
+}
+
 RBFIB_HD inline double trace_ab(const double A[2][2], const double B[2][2]) {
   return A[0][0] * B[0][0] + A[0][1] * B[1][0] + A[1][0] * B[0][1] + A[1][1] * B[1][1];
 }
@@ -144,26 +155,17 @@ RBFIB_HD inline ForceAtSite dissipative_force_density(const Jet& X, const Jet& U
                        surface::dot3(Xdd[a][j], Ud[b]) + surface::dot3(Xd[a], Udd[b][j]);
     }
   // A = G^{-1} Gdot G^{-1}; W = nu/8 tr((G^{-1} Gdot)^2) = nu/8 tr(A Gdot)
-  auto triple = [](const double P[2][2], const double Q[2][2], const double R[2][2], double out[2][2]) {
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j) {
-        double s = 0;
-        for (int k = 0; k < 2; ++k)
-          for (int l = 0; l < 2; ++l) s += P[i][k] * Q[k][l] * R[l][j];
-        out[i][j] = s;
-      }
-  };
   double A[2][2];
-  triple(Gi, Gd, Gi, A);
+  triple_product(Gi, Gd, Gi, A);
   r.W = nu / 8 * trace_ab(A, Gd);
   double G0i[2][2];
   inverse2(G0, det0, G0i);
   for (int j = 0; j < 2; ++j) {
     double dGi[2][2], t1[2][2], t2[2][2], t3[2][2];
     minus_aba(Gi, dG[j], dGi);
-    triple(dGi, Gd, Gi, t1);
-    triple(Gi, dGd[j], Gi, t2);
-    triple(Gi, Gd, dGi, t3);
+    triple_product(dGi, Gd, Gi, t1);
+    triple_product(Gi, dGd[j], Gi, t2);
+    triple_product(Gi, Gd, dGi, t3);
     const double dlng0 = 0.5 * trace_ab(G0i, dG0[j]);
     for (int k = 0; k < 2; ++k) {
       const double S = nu / 2 * A[k][j];
