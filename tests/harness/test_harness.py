@@ -94,6 +94,9 @@ class BadInput(unittest.TestCase):
             with open(os.path.join(tmp, "reference", "fake.yaml"), "w") as f:
                 f.write("study: fake\nsource: x\nchecks:\n  - {id: a, kind: guess, source: y}\n")
             self.assert_one_line_error(harness("run", "fake", "--no-run", root=tmp), "kind 'guess'")
+            with open(os.path.join(tmp, "reference", "fake.yaml"), "w") as f:
+                f.write("study: fake\nsource: x\nchecks:\n  - {id: a, kind: bound, source: y, value: v, max: 1}\n")
+            self.assert_one_line_error(harness("run", "fake", "--no-run", root=tmp), "speed_vs_error")
         finally:
             shutil.rmtree(tmp)
 
