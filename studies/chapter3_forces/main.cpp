@@ -240,6 +240,7 @@ int main(int argc, char** argv) {
 
     // ---- 5. Figs. 2-3: LDSM against n, SHVD against m -----------------------------------------
     Json speed = table({"method", "param", "seconds", "rel_err"}, {"", "", "s", ""});
+    Json orders = table({"figure", "method", "energy", "fit_order", "fit_order_all_n", "fit_points"}, {"", "", "", "", "", ""});
     for (const auto& [fig, shape] : std::vector<std::pair<std::string, const PerturbedEllipsoid*>>{
              {"fig2_ellipsoid", &ell}, {"fig3_perturbed", &pert}}) {
       Json t = table({"series", "method", "energy", "n", "m", "sqrt_points", "err_inf", "rel_err", "quad_err",
@@ -274,6 +275,9 @@ int main(int argc, char** argv) {
         V["ldsm_fit_order_all_" + tag] = power_law_order(xs_all, es_all);
         V["ldsm_fit_order_" + tag] = power_law_order(xs_ok, es_ok);
         V["ldsm_fit_points_" + tag] = double(xs_ok.size());
+        orders["rows"].push(row({fig == "fig2_ellipsoid" ? "Fig. 2" : "Fig. 3(a)", "LDSM", en.name,
+                                 power_law_order(xs_ok, es_ok), power_law_order(xs_all, es_all),
+                                 double(xs_ok.size())}));
         V["ldsm_rel_err_finest_" + tag] = rel_finest;
         const EvalSet& e = sets.at(n_shvd);
         const std::vector<double> Fe =
@@ -334,6 +338,7 @@ int main(int argc, char** argv) {
       T["rbf_reconstruction"] = t;
     }
     T["speed_vs_error"] = speed;
+    T["ldsm_orders"] = orders;
 
     // ---- 7. Mean curvature (eq. 76) on the perturbed ellipsoid: SHVD(m) and RBF(n_d) ----------
     {
