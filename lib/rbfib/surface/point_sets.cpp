@@ -137,7 +137,6 @@ void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
         p0 = p1;
         p1 = p2;
       }
-      if (n == 1) { p1 = z; p0 = 1; }
       dp = n * (z * p1 - p0) / (z * z - 1);
       const double dz = p1 / dp;
       z -= dz;
