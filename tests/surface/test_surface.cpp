@@ -267,7 +267,7 @@ TEST(Geometry, CurvatureOfSphereAndEllipsoidMatchesClosedForms) {
   for (std::size_t i = 0; i < J.size(); ++i) EXPECT_NEAR(G2[i].H, G[i].H, 1e-12);
 }
 
-TEST(Geometry, RbfCurvatureOfAnEllipsoidConverges) {
+TEST(Geometry, RbfCurvatureOfAnEllipsoidIsReproduced) {
   // PHS r^7 + degree-5 harmonics on Bauer spirals: the interpolant contains the ellipsoid, so H
   // is reproduced up to the conditioning of eq. (2.17).
   const double a = 1.1, b = 0.8, c = 0.6;
