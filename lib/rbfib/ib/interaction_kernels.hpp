@@ -1,0 +1,463 @@
+#pragma once
+// Pointwise kernels of interpolation and spreading (one Lagrangian point, one sorted position,
+// one reduced key or one grid unknown per call). The launches live in interaction.cpp.
+// Notation follows seed Sec. 4.1: cell = floor(X), shifts sigma_j of Alg. 4.1, weight
+// w_j = prod_a phi(sigma_j,a + delta_a), unknown # (cell + sigma_j), key kappa(cell).
+#include "rbfib/core/exec.hpp"
+#include "rbfib/ib/grid.hpp"
+#include "rbfib/ib/shifts.hpp"
+
+namespace rbfib::ib::detail {
+
+/// Cell and delta of point k along all axes.
+template <int S>
+RBFIB_HD inline void locate(const ComponentGrid& g, const double* X, index_t n, index_t k, int cell[3], double delta[3]) {
+  for (int a = 0; a < 3; ++a) cell[a] = cell_of<S>(g.axis[a], X[a * n + k], delta[a]);
+}
+
+/// delta_h(h sigma_j + Delta x) h^3 evaluated as in the seed (one product per shift).
+template <class K>
+RBFIB_HD inline double shift_weight(int j, const double delta[3]) {
+  constexpr int S = K::support;
+  return K::phi(shift_component(j, S, 0) + delta[0]) * K::phi(shift_component(j, S, 1) + delta[1]) *
+         K::phi(shift_component(j, S, 2) + delta[2]);
+}
+
+template <int S>
+RBFIB_HD inline index_t shift_index(const ComponentGrid& g, int j, const int cell[3]) {
+  return g.index(cell[0] + shift_component(j, S, 0), cell[1] + shift_component(j, S, 1), cell[2] + shift_component(j, S, 2));
+}
+
+// ---- Alg. 4.3: interpolation, one point ------------------------------------------------------
+template <class K>
+struct InterpolatePoint {
+  ComponentGrid g;
+  const double* X;
+  index_t n;
+  const double* e;
+  double* E;
+  RBFIB_HD void operator()(index_t k) const {
+    constexpr int S = K::support;
+    int cell[3];
+    double delta[3];
+    locate<S>(g, X, n, k, cell, delta);
+    double v = 0.0;
+    for (int j = 0; j < Shifts<S>::count; ++j) {
+      const index_t m = shift_index<S>(g, j, cell);
+      if (m >= 0) v += shift_weight<K>(j, delta) * e[m];
+    }
+    E[k] = v;
+  }
+};
+
+/// Runs a per-point functor over all points in one task (the serial algorithms).
+template <class F>
+struct Serially {
+  F f;
+  index_t n;
+  RBFIB_HD void operator()(index_t) const {
+    for (index_t k = 0; k < n; ++k) f(k);
+  }
+};
+
+// ---- Alg. 4.2: serial spreading, one point ---------------------------------------------------
+template <class K>
+struct SpreadPoint {
+  ComponentGrid g;
+  const double* X;
+  index_t n;
+  const double* L;
+  double scale;  // h^{-3}
+  double* l;
+  RBFIB_HD void operator()(index_t k) const {
+    constexpr int S = K::support;
+    int cell[3];
+    double delta[3];
+    locate<S>(g, X, n, k, cell, delta);
+    const double Lk = L[k] * scale;
+    for (int j = 0; j < Shifts<S>::count; ++j) {
+      const index_t m = shift_index<S>(g, j, cell);
+      if (m >= 0) l[m] += shift_weight<K>(j, delta) * Lk;
+    }
+  }
+};
+
+// ---- Algs. 4.4-4.6 ---------------------------------------------------------------------------
+/// Lines 4-7: K_i = kappa(floor(X_i)), P_i = i.
+template <int S>
+struct MakeKeys {
+  ComponentGrid g;
+  const double* X;
+  index_t n;
+  key_t* K;
+  int* P;
+  RBFIB_HD void operator()(index_t i) const {
+    int cell[3];
+    double delta[3];
+    locate<S>(g, X, n, i, cell, delta);
+    K[i] = g.key(cell[0], cell[1], cell[2]);
+    P[i] = int(i);
+  }
+};
+
+/// Lines 12-18 of Alg. 4.4: V_i = w_j(X_{P_i}) L_{P_i}.
+template <class K>
+struct ShiftValues {
+  ComponentGrid g;
+  const double* X;
+  index_t n;
+  const double* L;
+  const int* P;
+  double scale;
+  int j;
+  double* V;
+  RBFIB_HD void operator()(index_t i) const {
+    int cell[3];
+    double delta[3];
+    const index_t p = P[i];
+    locate<K::support>(g, X, n, p, cell, delta);
+    V[i] = shift_weight<K>(j, delta) * L[p] * scale;
+  }
+};
+
+/// Lines 20-26 of Alg. 4.4: l_m += V'_i for m = #(kappa^{-1}(K'_i) + sigma_j).
+template <int S>
+struct WriteReduced {
+  ComponentGrid g;
+  const key_t* K;
+  const double* V;
+  int j;
+  double* l;
+  RBFIB_HD void operator()(index_t i) const {
+    int cell[3];
+    g.cell_of_key(K[i], cell);
+    const index_t m = shift_index<S>(g, j, cell);
+    if (m >= 0) l[m] += V[i];
+  }
+};
+
+/// sz values reduced together in Algs. 4.5/4.6.
+struct Pack {
+  double v[8];
+};
+struct PackPlus {
+  RBFIB_HD Pack operator()(const Pack& a, const Pack& b) const {
+    Pack c;
+    for (int k = 0; k < 8; ++k) c.v[k] = a.v[k] + b.v[k];
+    return c;
+  }
+};
+
+/// Lines 13-21 of Alg. 4.5: V_ik = w_{sz b + k}(X_{P_i}) L_{P_i}.
+template <class K>
+struct PackValues {
+  ComponentGrid g;
+  const double* X;
+  index_t n;
+  const double* L;
+  const int* P;
+  double scale;
+  int first;  // sz b
+  Pack* V;
+  RBFIB_HD void operator()(index_t i) const {
+    constexpr int S = K::support;
+    int cell[3];
+    double delta[3];
+    const index_t p = P[i];
+    locate<S>(g, X, n, p, cell, delta);
+    const double Lp = L[p] * scale;
+    Pack v;
+    for (int k = 0; k < 8; ++k) {
+      const int j = first + k;
+      v.v[k] = j < Shifts<S>::count ? shift_weight<K>(j, delta) * Lp : 0.0;
+    }
+    V[i] = v;
+  }
+};
+
+/// Lines 23-31 of Alg. 4.5: l_{m,k} += V'_ik into buffer vector k.
+template <int S>
+struct WriteReducedPack {
+  ComponentGrid g;
+  const key_t* K;
+  const Pack* V;
+  int first;
+  index_t stride;  // length of one buffer vector
+  double* buffer;
+  RBFIB_HD void operator()(index_t i) const {
+    int cell[3];
+    g.cell_of_key(K[i], cell);
+    const Pack v = V[i];
+    for (int k = 0; k < 8; ++k) {
+      const int j = first + k;
+      if (j >= Shifts<S>::count) break;
+      const index_t m = shift_index<S>(g, j, cell);
+      if (m >= 0) buffer[k * stride + m] += v.v[k];
+    }
+  }
+};
+
+/// Line 34 of Alg. 4.5: l = sum_k l_k; the buffer is left zero for the next call.
+struct SumBuffer {
+  index_t stride;
+  double* buffer;
+  double* l;
+  RBFIB_HD void operator()(index_t m) const {
+    double s = 0.0;
+    for (int k = 0; k < 8; ++k) {
+      s += buffer[k * stride + m];
+      buffer[k * stride + m] = 0.0;
+    }
+    l[m] = s;
+  }
+};
+
+// ---- binned variants -------------------------------------------------------------------------
+/// Cell-centred cell of a coordinate along an axis, in [0, N).
+RBFIB_HD inline int plain_cell(const GridAxis& a, double x) {
+  double u = (x - a.origin) * a.inv_h;
+  if (a.periodic) u -= a.cells * floor(u / a.cells);
+  int c = int(floor(u));
+  if (c >= a.cells) c = a.periodic ? c - a.cells : a.cells - 1;
+  if (c < 0) c = a.periodic ? c + a.cells : 0;
+  return c;
+}
+
+/// bin = (z cell) N_y + (y cell): rows of cells, z slowest.
+struct RowBin {
+  GridAxis y, z;
+  const double* X;
+  index_t n;
+  int* bin;
+  RBFIB_HD void operator()(index_t i) const { bin[i] = plain_cell(z, X[2 * n + i]) * y.cells + plain_cell(y, X[n + i]); }
+};
+
+/// Counting sort, pass 1: chunk c counts its points per bin into counts[bin C + c].
+struct CountChunk {
+  const int* bin;
+  index_t n;
+  int chunks;
+  int* counts;
+  RBFIB_HD void operator()(index_t c) const {
+    const index_t lo = n * c / chunks, hi = n * (c + 1) / chunks;
+    for (index_t i = lo; i < hi; ++i) ++counts[index_t(bin[i]) * chunks + c];
+  }
+};
+
+/// Counting sort, pass 2 (after an exclusive scan of counts): stable placement.
+struct PlaceChunk {
+  const int* bin;
+  index_t n;
+  int chunks;
+  int* offsets;
+  int* perm;
+  RBFIB_HD void operator()(index_t c) const {
+    const index_t lo = n * c / chunks, hi = n * (c + 1) / chunks;
+    for (index_t i = lo; i < hi; ++i) perm[offsets[index_t(bin[i]) * chunks + c]++] = int(i);
+  }
+};
+
+/// First sorted position of each z-slab (slab s covers planes [s N_z / slabs, (s+1) N_z / slabs)).
+struct SlabStart {
+  const int* offsets;  // scanned counts, before placement
+  int chunks, slabs, planes, rows;
+  index_t n;
+  int* start;
+  RBFIB_HD void operator()(index_t s) const {
+    if (s == slabs) {
+      start[s] = int(n);
+      return;
+    }
+    const index_t plane = index_t(s) * planes / slabs;
+    start[s] = offsets[plane * rows * chunks];
+  }
+};
+
+/// Gathers coordinates (and optionally values) in sorted order.
+struct GatherSorted {
+  const int* perm;
+  index_t n;
+  const double* X;
+  const double* F;  // may be null
+  double* Xs;
+  double* Fs;
+  RBFIB_HD void operator()(index_t p) const {
+    const index_t k = perm[p];
+    for (int d = 0; d < 3; ++d) Xs[d * n + p] = X[d * n + k];
+    if (F)
+      for (int d = 0; d < 3; ++d) Fs[d * n + p] = F[d * n + k];
+  }
+};
+
+/// Separable weights of one point for all three components: w[c][a][t] = phi(t - s/2 + delta),
+/// the first support cell first[c][a]; components that share a staggering share the weights.
+template <class K>
+struct PointWeights {
+  static constexpr int S = K::support;
+  int first[3][3];
+  double w[3][3][S];
+  RBFIB_HD void compute(const ComponentGrid* g, const double x[3]) {
+    for (int c = 0; c < 3; ++c)
+      for (int a = 0; a < 3; ++a) {
+        int src = -1;
+        for (int c2 = 0; c2 < c; ++c2)
+          if (g[c2].axis[a].g == g[c].axis[a].g) src = c2;
+        if (src >= 0) {
+          first[c][a] = first[src][a];
+          for (int t = 0; t < S; ++t) w[c][a][t] = w[src][a][t];
+          continue;
+        }
+        double delta;
+        const int cell = cell_of<S>(g[c].axis[a], x[a], delta);
+        first[c][a] = cell - S / 2;
+        for (int t = 0; t < S; ++t) w[c][a][t] = K::phi(double(t - S / 2) + delta);
+      }
+  }
+};
+
+/// sum over the support of w_x w_y w_z e, or l += w_x w_y w_z F, for one component.
+template <int S>
+struct Stencil {
+  index_t ix[S], iy[S], iz[S];
+  bool contiguous_x;
+  RBFIB_HD void build(const ComponentGrid& g, const int first[3]) {
+    contiguous_x = true;
+    for (int t = 0; t < S; ++t) {
+      const int a = g.axis[0].index(first[0] + t), b = g.axis[1].index(first[1] + t), c = g.axis[2].index(first[2] + t);
+      ix[t] = a;
+      iy[t] = b < 0 ? -1 : b * g.stride[1];
+      iz[t] = c < 0 ? -1 : c * g.stride[2];
+      if (a != ix[0] + t || a < 0) contiguous_x = false;
+    }
+  }
+};
+
+template <int S>
+RBFIB_HD inline double gather(const Stencil<S>& st, const double (*w)[S], const double* e) {
+  double v = 0.0;
+  for (int tz = 0; tz < S; ++tz) {
+    if (st.iz[tz] < 0) continue;
+    double vz = 0.0;
+    for (int ty = 0; ty < S; ++ty) {
+      if (st.iy[ty] < 0) continue;
+      const double* row = e + st.iz[tz] + st.iy[ty];
+      double vy = 0.0;
+      if (st.contiguous_x) {
+        row += st.ix[0];
+        for (int tx = 0; tx < S; ++tx) vy += w[0][tx] * row[tx];
+      } else {
+        for (int tx = 0; tx < S; ++tx)
+          if (st.ix[tx] >= 0) vy += w[0][tx] * row[st.ix[tx]];
+      }
+      vz += w[1][ty] * vy;
+    }
+    v += w[2][tz] * vz;
+  }
+  return v;
+}
+
+template <int S>
+RBFIB_HD inline void scatter(const Stencil<S>& st, const double (*w)[S], double F, double* l) {
+  for (int tz = 0; tz < S; ++tz) {
+    if (st.iz[tz] < 0) continue;
+    const double fz = w[2][tz] * F;
+    for (int ty = 0; ty < S; ++ty) {
+      if (st.iy[ty] < 0) continue;
+      double* row = l + st.iz[tz] + st.iy[ty];
+      const double fy = w[1][ty] * fz;
+      if (st.contiguous_x) {
+        row += st.ix[0];
+        for (int tx = 0; tx < S; ++tx) row[tx] += w[0][tx] * fy;
+      } else {
+        for (int tx = 0; tx < S; ++tx)
+          if (st.ix[tx] >= 0) row[st.ix[tx]] += w[0][tx] * fy;
+      }
+    }
+  }
+}
+
+struct ThreeGrids {
+  ComponentGrid g[3];
+};
+
+/// Interpolation of all components at sorted position p (points sorted by bin_points).
+template <class K>
+struct InterpolateSorted {
+  ThreeGrids grids;
+  const double* Xs;
+  const int* perm;
+  index_t n;
+  const double* e0;
+  const double* e1;
+  const double* e2;
+  double* U;
+  RBFIB_HD void operator()(index_t p) const {
+    constexpr int S = K::support;
+    const double x[3] = {Xs[p], Xs[n + p], Xs[2 * n + p]};
+    PointWeights<K> pw;
+    pw.compute(grids.g, x);
+    const double* e[3] = {e0, e1, e2};
+    const index_t k = perm[p];
+    for (int c = 0; c < 3; ++c) {
+      Stencil<S> st;
+      st.build(grids.g[c], pw.first[c]);
+      U[c * n + k] = gather<S>(st, pw.w[c], e[c]);
+    }
+  }
+};
+
+/// Spreading of all sorted points of one z-slab of the given colour (slab 2t + colour).
+template <class K>
+struct SpreadSlab {
+  ThreeGrids grids;
+  const double* Xs;
+  const double* Fs;
+  const int* start;
+  index_t n;
+  double scale;
+  int colour;
+  double* l0;
+  double* l1;
+  double* l2;
+  RBFIB_HD void operator()(index_t t) const {
+    constexpr int S = K::support;
+    const index_t s = 2 * t + colour;
+    double* l[3] = {l0, l1, l2};
+    for (index_t p = start[s]; p < start[s + 1]; ++p) {
+      const double x[3] = {Xs[p], Xs[n + p], Xs[2 * n + p]};
+      PointWeights<K> pw;
+      pw.compute(grids.g, x);
+      for (int c = 0; c < 3; ++c) {
+        Stencil<S> st;
+        st.build(grids.g[c], pw.first[c]);
+        scatter<S>(st, pw.w[c], Fs[c * n + p] * scale, l[c]);
+      }
+    }
+  }
+};
+
+/// How many periods away from the box a point on a periodic axis may lie (wrapping further away
+/// would lose the position to rounding).
+inline constexpr double periodic_reach = 1048576.0;
+
+/// Index of the first bad coordinate (not finite, or outside a wall axis), or 3n if none.
+struct BadCoordinate {
+  GridAxis axis[3];
+  const double* X;
+  index_t n;
+  RBFIB_HD index_t operator()(index_t e) const {
+    const int d = int(e / n);
+    const double x = X[e];
+    const GridAxis& a = axis[d];
+    const bool finite = x == x && x - x == 0.0;
+    const bool inside = a.periodic ? (x - a.origin <= periodic_reach * a.length && a.origin - x <= periodic_reach * a.length)
+                                   : (x >= a.origin && x <= a.origin + a.length);
+    return (finite && inside) ? 3 * n : e;
+  }
+};
+
+struct MinIndex {
+  RBFIB_HD index_t operator()(index_t a, index_t b) const { return a < b ? a : b; }
+};
+
+}  // namespace rbfib::ib::detail
