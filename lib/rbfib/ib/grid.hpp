@@ -46,8 +46,14 @@ struct GridAxis {
   /// The grid indexing function # along this axis: unknown index of cell i, or -1 for none.
   RBFIB_HD int index(int i) const {
     if (periodic) {
-      i %= cells;
-      return i < 0 ? i + cells : i;
+      // Cells and shifts stay within one period of [0, N) (N >= s); avoid the division then.
+      if (i < 0) i += cells;
+      else if (i >= cells) i -= cells;
+      if (i < 0 || i >= cells) {
+        i %= cells;
+        if (i < 0) i += cells;
+      }
+      return i;
     }
     return (i >= 0 && i < n) ? i : -1;
   }

@@ -213,6 +213,12 @@ void Interaction::sort_keys(int c, int support, index_t n, const dvec& X) {
     }
   }
   thrust::sort_by_key(keys_.begin(), keys_.end(), perm_.begin());
+  // The runs of equal keys (q of them, line 9 of Alg. 4.4), found once and reused for every shift.
+  segments_.resize(n + 1);
+  const auto end = thrust::copy_if(thrust::counting_iterator<int>(0), thrust::counting_iterator<int>(int(n)), segments_.begin(),
+                                   detail::IsSegmentHead{ptr(keys_)});
+  segment_count_ = end - segments_.begin();
+  segments_[segment_count_] = int(n);
 }
 
 template <class K>
@@ -227,9 +233,8 @@ void Interaction::spread_sort_reduce(int c, index_t n, const dvec& X, const doub
   keys_reduced_.resize(n);
   for (int j = 0; j < Shifts<S>::count; ++j) {
     for_each_index(n, detail::ShiftValues<K>{g, ptr(X), n, L, ptr(perm_), scale, j, ptr(values_)});
-    const auto end = thrust::reduce_by_key(keys_.begin(), keys_.end(), values_.begin(), keys_reduced_.begin(),
-                                           values_reduced_.begin());
-    const index_t q = end.first - keys_reduced_.begin();
+    const index_t q = segment_count_;
+    for_each_index(q, detail::SegmentSum<double>{ptr(segments_), ptr(keys_), ptr(values_), ptr(keys_reduced_), ptr(values_reduced_)});
     for_each_index(q, detail::WriteReduced<S>{g, ptr(keys_reduced_), ptr(values_reduced_), j, ptr(out)});
   }
 }
@@ -247,13 +252,10 @@ void Interaction::spread_buffered(int c, index_t n, const dvec& X, const double*
     using detail::Pack;
     Pack* V = reinterpret_cast<Pack*>(ptr(values_));
     Pack* Vr = reinterpret_cast<Pack*>(ptr(values_reduced_));
-    const auto V0 = thrust::device_pointer_cast(V);
-    const auto Vr0 = thrust::device_pointer_cast(Vr);
     for (int first = 0; first < Shifts<S>::count; first += buffer_width) {
       for_each_index(n, detail::PackValues<K>{g, ptr(X), n, L, ptr(perm_), scale, first, V});
-      const auto end = thrust::reduce_by_key(keys_.begin(), keys_.end(), V0, keys_reduced_.begin(), Vr0,
-                                             thrust::equal_to<key_t>(), detail::PackPlus{});
-      const index_t q = end.first - keys_reduced_.begin();
+      const index_t q = segment_count_;
+      for_each_index(q, detail::SegmentSum<Pack>{ptr(segments_), ptr(keys_), V, ptr(keys_reduced_), Vr});
       for_each_index(q, detail::WriteReducedPack<S>{g, ptr(keys_reduced_), Vr, first, g.size, ptr(buffer)});
     }
   }

@@ -20,7 +20,9 @@
 //   Interpolation::parallel      Alg. 4.3, one thread per point
 //   Interpolation::binned        Alg. 4.3 on points sorted by grid cell, with separable weights
 //   Spreading::serial            Alg. 4.2
-//   Spreading::sort_reduce       Alg. 4.4 (key sort + one segmented reduce per shift)
+//   Spreading::sort_reduce       Alg. 4.4 (key sort + one segmented reduce per shift; the runs of
+//                                equal sorted keys are found once per call and each segment is
+//                                summed by one thread)
 //   Spreading::preallocated      Alg. 4.5 (buffer of sz vectors owned by this object)
 //   Spreading::on_the_fly        Alg. 4.6 (buffer allocated and freed in each call)
 //   Spreading::binned            points sorted by grid cell (counting sort of (z, y) cell rows),
@@ -90,7 +92,8 @@ class Interaction {
   dvec buffer_;  // Alg. 4.5: buffer_width vectors of the largest component, zero between calls
   // workspace, reused between calls
   device_vector<key_t> keys_, keys_reduced_;
-  device_vector<int> perm_, bins_, counts_, slab_start_;
+  device_vector<int> perm_, bins_, counts_, slab_start_, segments_;
+  index_t segment_count_ = 0;
   dvec values_, values_reduced_, sorted_x_, sorted_f_;
   int slabs_ = 1;
 };

@@ -120,6 +120,37 @@ struct ShiftValues {
   }
 };
 
+/// Whether sorted position p starts a run of equal keys.
+struct IsSegmentHead {
+  const key_t* K;
+  RBFIB_HD bool operator()(index_t p) const { return p == 0 || K[p] != K[p - 1]; }
+};
+
+/// Segmented reduce (line 19 of Alg. 4.4, line 22 of Alg. 4.5): V'_i = sum of V over segment i
+/// of the sorted keys, and K'_i its key. The segments are the same for every shift.
+template <class T>
+struct SegmentSum {
+  const int* start;  // q + 1 offsets
+  const key_t* K;
+  const T* V;
+  key_t* Kr;
+  T* Vr;
+  RBFIB_HD void operator()(index_t i) const {
+    const int b = start[i], e = start[i + 1];
+    T v = V[b];
+    for (int p = b + 1; p < e; ++p) v = add(v, V[p]);
+    Vr[i] = v;
+    Kr[i] = K[b];
+  }
+  RBFIB_HD static double add(double a, double b) { return a + b; }
+  template <class P>
+  RBFIB_HD static P add(const P& a, const P& b) {
+    P c;
+    for (int k = 0; k < 8; ++k) c.v[k] = a.v[k] + b.v[k];
+    return c;
+  }
+};
+
 /// Lines 20-26 of Alg. 4.4: l_m += V'_i for m = #(kappa^{-1}(K'_i) + sigma_j).
 template <int S>
 struct WriteReduced {
@@ -139,13 +170,6 @@ struct WriteReduced {
 /// sz values reduced together in Algs. 4.5/4.6.
 struct Pack {
   double v[8];
-};
-struct PackPlus {
-  RBFIB_HD Pack operator()(const Pack& a, const Pack& b) const {
-    Pack c;
-    for (int k = 0; k < 8; ++k) c.v[k] = a.v[k] + b.v[k];
-    return c;
-  }
 };
 
 /// Lines 13-21 of Alg. 4.5: V_ik = w_{sz b + k}(X_{P_i}) L_{P_i}.
@@ -315,7 +339,8 @@ struct PointWeights {
   }
 };
 
-/// sum over the support of w_x w_y w_z e, or l += w_x w_y w_z F, for one component.
+/// The support of one point in one component: unknown offsets of the s rows along y and z and
+/// of the s points along x (-1: none), and whether the x points are contiguous (the usual case).
 template <int S>
 struct Stencil {
   index_t ix[S], iy[S], iz[S];
@@ -332,8 +357,34 @@ struct Stencil {
   }
 };
 
+/// Whether the support lies inside the grid without wrapping along any axis: then the unknowns
+/// are first + (tx, ty, tz) . stride and no index needs checking.
+RBFIB_HD inline bool interior(const ComponentGrid& g, const int first[3], int S) {
+  for (int a = 0; a < 3; ++a)
+    if (first[a] < 0 || first[a] + S > g.axis[a].n) return false;
+  return true;
+}
+
+/// sum over the support of w_x w_y w_z e (tensor-product order: x, then y, then z).
 template <int S>
-RBFIB_HD inline double gather(const Stencil<S>& st, const double (*w)[S], const double* e) {
+RBFIB_HD inline double gather(const ComponentGrid& g, const int first[3], const double (*w)[S], const double* e) {
+  if (interior(g, first, S)) {
+    const double* base = e + first[0] + g.stride[1] * first[1] + g.stride[2] * first[2];
+    double v = 0.0;
+    for (int tz = 0; tz < S; ++tz) {
+      double vz = 0.0;
+      for (int ty = 0; ty < S; ++ty) {
+        const double* row = base + tz * g.stride[2] + ty * g.stride[1];
+        double vy = 0.0;
+        for (int tx = 0; tx < S; ++tx) vy += w[0][tx] * row[tx];
+        vz += w[1][ty] * vy;
+      }
+      v += w[2][tz] * vz;
+    }
+    return v;
+  }
+  Stencil<S> st;
+  st.build(g, first);
   double v = 0.0;
   for (int tz = 0; tz < S; ++tz) {
     if (st.iz[tz] < 0) continue;
@@ -342,13 +393,8 @@ RBFIB_HD inline double gather(const Stencil<S>& st, const double (*w)[S], const 
       if (st.iy[ty] < 0) continue;
       const double* row = e + st.iz[tz] + st.iy[ty];
       double vy = 0.0;
-      if (st.contiguous_x) {
-        row += st.ix[0];
-        for (int tx = 0; tx < S; ++tx) vy += w[0][tx] * row[tx];
-      } else {
-        for (int tx = 0; tx < S; ++tx)
-          if (st.ix[tx] >= 0) vy += w[0][tx] * row[st.ix[tx]];
-      }
+      for (int tx = 0; tx < S; ++tx)
+        if (st.ix[tx] >= 0) vy += w[0][tx] * row[st.ix[tx]];
       vz += w[1][ty] * vy;
     }
     v += w[2][tz] * vz;
@@ -356,8 +402,23 @@ RBFIB_HD inline double gather(const Stencil<S>& st, const double (*w)[S], const 
   return v;
 }
 
+/// l += w_x w_y w_z F over the support.
 template <int S>
-RBFIB_HD inline void scatter(const Stencil<S>& st, const double (*w)[S], double F, double* l) {
+RBFIB_HD inline void scatter(const ComponentGrid& g, const int first[3], const double (*w)[S], double F, double* l) {
+  if (interior(g, first, S)) {
+    double* base = l + first[0] + g.stride[1] * first[1] + g.stride[2] * first[2];
+    for (int tz = 0; tz < S; ++tz) {
+      const double fz = w[2][tz] * F;
+      for (int ty = 0; ty < S; ++ty) {
+        double* row = base + tz * g.stride[2] + ty * g.stride[1];
+        const double fy = w[1][ty] * fz;
+        for (int tx = 0; tx < S; ++tx) row[tx] += w[0][tx] * fy;
+      }
+    }
+    return;
+  }
+  Stencil<S> st;
+  st.build(g, first);
   for (int tz = 0; tz < S; ++tz) {
     if (st.iz[tz] < 0) continue;
     const double fz = w[2][tz] * F;
@@ -365,13 +426,8 @@ RBFIB_HD inline void scatter(const Stencil<S>& st, const double (*w)[S], double 
       if (st.iy[ty] < 0) continue;
       double* row = l + st.iz[tz] + st.iy[ty];
       const double fy = w[1][ty] * fz;
-      if (st.contiguous_x) {
-        row += st.ix[0];
-        for (int tx = 0; tx < S; ++tx) row[tx] += w[0][tx] * fy;
-      } else {
-        for (int tx = 0; tx < S; ++tx)
-          if (st.ix[tx] >= 0) row[st.ix[tx]] += w[0][tx] * fy;
-      }
+      for (int tx = 0; tx < S; ++tx)
+        if (st.ix[tx] >= 0) row[st.ix[tx]] += w[0][tx] * fy;
     }
   }
 }
@@ -398,11 +454,7 @@ struct InterpolateSorted {
     pw.compute(grids.g, x);
     const double* e[3] = {e0, e1, e2};
     const index_t k = perm[p];
-    for (int c = 0; c < 3; ++c) {
-      Stencil<S> st;
-      st.build(grids.g[c], pw.first[c]);
-      U[c * n + k] = gather<S>(st, pw.w[c], e[c]);
-    }
+    for (int c = 0; c < 3; ++c) U[c * n + k] = gather<S>(grids.g[c], pw.first[c], pw.w[c], e[c]);
   }
 };
 
@@ -427,11 +479,7 @@ struct SpreadSlab {
       const double x[3] = {Xs[p], Xs[n + p], Xs[2 * n + p]};
       PointWeights<K> pw;
       pw.compute(grids.g, x);
-      for (int c = 0; c < 3; ++c) {
-        Stencil<S> st;
-        st.build(grids.g[c], pw.first[c]);
-        scatter<S>(st, pw.w[c], Fs[c * n + p] * scale, l[c]);
-      }
+      for (int c = 0; c < 3; ++c) scatter<S>(grids.g[c], pw.first[c], pw.w[c], Fs[c * n + p] * scale, l[c]);
     }
   }
 };
