@@ -1,0 +1,119 @@
+"""Command line: python3 -m harness run <study|chapter|all> [--scale quick|full] [options]."""
+import argparse
+import datetime
+import json
+import os
+import subprocess
+import sys
+import time
+
+from . import HarnessError, catalog, checks, report
+
+ROOT = os.environ.get("RBFIB_ROOT") or os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+class Parser(argparse.ArgumentParser):
+    def error(self, message):
+        raise HarnessError(message)
+
+
+def parse(argv):
+    p = Parser(prog="python3 -m harness", description="Run rbfib studies, compare with reference/, render reports/.")
+    sub = p.add_subparsers(dest="command", required=True)
+    r = sub.add_parser("run", help="run studies and render their reports")
+    r.add_argument("target", help="a study name, a chapter (chapter2, appendixA, ...) or 'all'")
+    r.add_argument("--scale", default="quick", help="quick (CI sizes, default) or full (the paper's sizes)")
+    r.add_argument("--build", default=os.path.join(ROOT, "build"), help="CMake build directory with studies/")
+    r.add_argument("--out", default=os.path.join(ROOT, "runs"), help="where run directories go")
+    r.add_argument("--reports", default=os.path.join(ROOT, "reports"), help="where reports go")
+    r.add_argument("--no-run", action="store_true", help="render from the existing results.json, do not run the driver")
+    sub.add_parser("list", help="list the studies")
+    a = p.parse_args(argv)
+    if a.command == "run" and a.scale not in ("quick", "full"):
+        raise HarnessError(f"--scale = '{a.scale}' is not one of: quick, full")
+    return a
+
+
+def git_commit():
+    try:
+        out = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True, timeout=10)
+        dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no"], capture_output=True,
+                               text=True, timeout=10)
+        return out.stdout.strip() + ("+changes" if dirty.stdout.strip() else "") if out.returncode == 0 else "unknown"
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def run_study(meta, args):
+    name = meta["name"]
+    ref = catalog.reference(ROOT, name)  # validate before spending time on the run
+    run_dir = os.path.join(args.out, name, args.scale)
+    os.makedirs(run_dir, exist_ok=True)
+    info = {"commit": git_commit(), "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")}
+    results_path = os.path.join(run_dir, "results.json")
+    if not args.no_run:
+        exe = os.path.join(args.build, "studies", f"study_{name}")
+        if not os.path.isfile(exe):
+            raise HarnessError(f"study '{name}': driver {exe} not built (run `make build`)")
+        if os.path.exists(results_path):
+            os.remove(results_path)
+        print(f"harness: running {name} at {args.scale} scale -> {run_dir}", flush=True)
+        t0 = time.monotonic()
+        proc = subprocess.run([exe, "--scale", args.scale, "--out", run_dir])
+        info["seconds"] = time.monotonic() - t0
+        if proc.returncode != 0:
+            raise HarnessError(f"study '{name}': driver exited with status {proc.returncode}")
+        with open(os.path.join(run_dir, "run.json"), "w") as f:
+            json.dump(info, f)
+    else:
+        try:
+            with open(os.path.join(run_dir, "run.json")) as f:
+                info.update(json.load(f))
+        except OSError:
+            pass
+    if not os.path.isfile(results_path):
+        raise HarnessError(f"study '{name}': no results file {results_path}")
+    try:
+        with open(results_path) as f:
+            results = json.load(f)
+    except json.JSONDecodeError as e:
+        raise HarnessError(f"study '{name}': {results_path} is not valid JSON: {e}")
+    if results.get("study") != name:
+        raise HarnessError(f"study '{name}': {results_path} is for study '{results.get('study')}'")
+    outcome = checks.evaluate(ref, results)
+    summary = report.render(meta, ref, results, outcome, os.path.join(args.reports, name), info)
+    for c in outcome:
+        print(f"  {'PASS' if c['passed'] else 'FAIL'}  {c['id']}: {c['detail']}")
+    print(f"harness: {name}: {summary['passed']} passed, {summary['failed']} failed; "
+          f"report {os.path.join(args.reports, name, 'README.md')}", flush=True)
+    return summary
+
+
+def main(argv):
+    try:
+        args = parse(argv)
+        if args.command == "list":
+            for m in catalog.studies(ROOT).values():
+                print(f"{m['name']:28s} {m['chapter']:10s} {m['title']}")
+            return 0
+        selected = catalog.select(ROOT, args.target)
+        summaries, broken = [], []
+        for m in selected:
+            if len(selected) == 1:
+                summaries.append(run_study(m, args))
+                continue
+            try:  # with several studies, one that cannot run does not stop the others
+                summaries.append(run_study(m, args))
+            except HarnessError as e:
+                print(f"harness: error: {e}", file=sys.stderr)
+                broken.append(m["name"])
+        os.makedirs(args.reports, exist_ok=True)
+        report.render_index(args.reports)
+        passed = sum(s["passed"] for s in summaries)
+        failed = sum(s["failed"] for s in summaries)
+        print(f"harness: {len(summaries)} studies: {passed} passed, {failed} failed"
+              + (f"; could not run: {', '.join(broken)}" if broken else ""))
+        return 2 if broken else (1 if failed else 0)
+    except HarnessError as e:
+        print(f"harness: error: {e}", file=sys.stderr)
+        return 2
