@@ -66,7 +66,9 @@ void expect_support_and_sign() {
     const double p = K::phi(r);
     EXPECT_GE(p, 0.0) << K::name << " r=" << r;
     EXPECT_EQ(p, K::phi(-r)) << K::name << " must be even, r=" << r;
-    if (std::abs(r) >= half) EXPECT_EQ(p, 0.0) << K::name << " outside the support, r=" << r;
+    if (std::abs(r) >= half) {
+      EXPECT_EQ(p, 0.0) << K::name << " outside the support, r=" << r;
+    }
   }
   // Continuity at the support edge and the breakpoints (a jump would show as a large difference).
   for (double b : {0.5, 1.0, 1.5, 2.0}) EXPECT_NEAR(K::phi(b - 1e-12), K::phi(b + 1e-12), 1e-5) << K::name << " at " << b;
@@ -151,6 +153,37 @@ TEST(IbShifts, Algorithm41Order) {
     EXPECT_EQ(S4::value[j][1], (j / 4) % 4 - 2);
     EXPECT_EQ(S4::value[j][2], j / 16 - 2);
   }
+}
+
+}  // namespace
+}  // namespace rbfib::ib
+
+namespace rbfib::ib {
+namespace {
+
+// The closed-form axis weights equal s evaluations of phi at the shifted offsets: both are a few
+// operations and one sqrt/cos away from the exact value, 16 eps apart at most.
+template <class K>
+void expect_axis_weights_match_phi() {
+  const int S = K::support;
+  for (int i = 0; i <= 1000; ++i) {
+    const double delta = (S % 2 == 0) ? (i == 0 ? 1e-17 : i / 1000.0) : (i == 0 ? -0.5 + 1e-12 : -0.5 + i / 1000.0);
+    double w[8];
+    axis_weights<K>(delta, w);
+    double sum = 0.0;
+    for (int t = 0; t < S; ++t) {
+      EXPECT_NEAR(w[t], K::phi(t - S / 2 + delta), 16 * eps) << K::name << " delta=" << delta << " t=" << t;
+      sum += w[t];
+    }
+    EXPECT_NEAR(sum, 1.0, 8 * eps) << K::name << " delta=" << delta;
+  }
+}
+
+TEST(IbKernels, AxisWeightsMatchPhi) {
+  expect_axis_weights_match_phi<Roma3>();
+  expect_axis_weights_match_phi<BSpline3>();
+  expect_axis_weights_match_phi<Cosine4>();
+  expect_axis_weights_match_phi<Peskin4>();
 }
 
 }  // namespace

@@ -40,7 +40,7 @@ struct GridAxis {
   /// Position in index units, u = (x - origin)/h - g, wrapped into [0, N] on periodic axes.
   RBFIB_HD double index_position(double x) const {
     double u = (x - origin) * inv_h - g;
-    if (periodic) u -= cells * floor(u / cells);
+    if (periodic && (u < 0.0 || u >= cells)) u -= cells * floor(u / cells);
     return u;
   }
   /// The grid indexing function # along this axis: unknown index of cell i, or -1 for none.

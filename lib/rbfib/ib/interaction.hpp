@@ -32,6 +32,7 @@
 #include "rbfib/core/exec.hpp"
 #include "rbfib/grid/box.hpp"
 #include "rbfib/ib/grid.hpp"
+#include "rbfib/ib/interaction_kernels.hpp"
 
 #include <array>
 #include <string>
@@ -96,6 +97,7 @@ class Interaction {
   index_t segment_count_ = 0;
   dvec values_, values_reduced_, sorted_x_, sorted_f_;
   int slabs_ = 1;
+  detail::WeightPlan plan_;
 };
 
 }  // namespace rbfib::ib

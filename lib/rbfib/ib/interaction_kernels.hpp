@@ -5,6 +5,7 @@
 // w_j = prod_a phi(sigma_j,a + delta_a), unknown # (cell + sigma_j), key kappa(cell).
 #include "rbfib/core/exec.hpp"
 #include "rbfib/ib/grid.hpp"
+#include "rbfib/ib/kernels.hpp"
 #include "rbfib/ib/shifts.hpp"
 
 namespace rbfib::ib::detail {
@@ -313,29 +314,30 @@ struct GatherSorted {
   }
 };
 
-/// Separable weights of one point for all three components: w[c][a][t] = phi(t - s/2 + delta),
-/// the first support cell first[c][a]; components that share a staggering share the weights.
+/// Which 1D weight sets a point needs: set k is along axis axis[k] with the staggering of
+/// component comp[k]; component c uses sets of[c][0..2]. Components sharing a staggering along
+/// an axis share the set (on the MAC grid: 6 sets for the 9 component-axis pairs).
+struct WeightPlan {
+  int count = 0;
+  int axis[9], comp[9];
+  int of[3][3];
+};
+
+/// Separable weights of one point: w[k][t] = phi(t - s/2 + delta) for each set of the plan, and
+/// the first support cell first[k].
 template <class K>
 struct PointWeights {
   static constexpr int S = K::support;
-  int first[3][3];
-  double w[3][3][S];
-  RBFIB_HD void compute(const ComponentGrid* g, const double x[3]) {
-    for (int c = 0; c < 3; ++c)
-      for (int a = 0; a < 3; ++a) {
-        int src = -1;
-        for (int c2 = 0; c2 < c; ++c2)
-          if (g[c2].axis[a].g == g[c].axis[a].g) src = c2;
-        if (src >= 0) {
-          first[c][a] = first[src][a];
-          for (int t = 0; t < S; ++t) w[c][a][t] = w[src][a][t];
-          continue;
-        }
-        double delta;
-        const int cell = cell_of<S>(g[c].axis[a], x[a], delta);
-        first[c][a] = cell - S / 2;
-        for (int t = 0; t < S; ++t) w[c][a][t] = K::phi(double(t - S / 2) + delta);
-      }
+  int first[9];
+  double w[9][S];
+  RBFIB_HD void compute(const ComponentGrid* g, const WeightPlan& plan, const double x[3]) {
+    for (int k = 0; k < plan.count; ++k) {
+      const int a = plan.axis[k];
+      double delta;
+      const int cell = cell_of<S>(g[plan.comp[k]].axis[a], x[a], delta);
+      first[k] = cell - S / 2;
+      axis_weights<K>(delta, w[k]);
+    }
   }
 };
 
@@ -365,23 +367,34 @@ RBFIB_HD inline bool interior(const ComponentGrid& g, const int first[3], int S)
   return true;
 }
 
+/// (v0 + v1) + (v2 + v3) + ...: a short dependency chain.
+template <int S>
+RBFIB_HD inline double pairwise_sum(const double* v) {
+  if constexpr (S == 1) {
+    return v[0];
+  } else {
+    return pairwise_sum<S / 2>(v) + pairwise_sum<S - S / 2>(v + S / 2);
+  }
+}
+
 /// sum over the support of w_x w_y w_z e (tensor-product order: x, then y, then z).
 template <int S>
-RBFIB_HD inline double gather(const ComponentGrid& g, const int first[3], const double (*w)[S], const double* e) {
+RBFIB_HD inline double gather(const ComponentGrid& g, const int first[3], const double* const w[3], const double* e) {
   if (interior(g, first, S)) {
+    // All s^2 row sums are independent (their loads overlap); then pairwise sums along y and z.
     const double* base = e + first[0] + g.stride[1] * first[1] + g.stride[2] * first[2];
-    double v = 0.0;
+    double vz[S];
     for (int tz = 0; tz < S; ++tz) {
-      double vz = 0.0;
+      double vy[S];
       for (int ty = 0; ty < S; ++ty) {
         const double* row = base + tz * g.stride[2] + ty * g.stride[1];
-        double vy = 0.0;
-        for (int tx = 0; tx < S; ++tx) vy += w[0][tx] * row[tx];
-        vz += w[1][ty] * vy;
+        double xs[S];
+        for (int tx = 0; tx < S; ++tx) xs[tx] = w[0][tx] * row[tx];
+        vy[ty] = w[1][ty] * pairwise_sum<S>(xs);
       }
-      v += w[2][tz] * vz;
+      vz[tz] = w[2][tz] * pairwise_sum<S>(vy);
     }
-    return v;
+    return pairwise_sum<S>(vz);
   }
   Stencil<S> st;
   st.build(g, first);
@@ -404,7 +417,7 @@ RBFIB_HD inline double gather(const ComponentGrid& g, const int first[3], const 
 
 /// l += w_x w_y w_z F over the support.
 template <int S>
-RBFIB_HD inline void scatter(const ComponentGrid& g, const int first[3], const double (*w)[S], double F, double* l) {
+RBFIB_HD inline void scatter(const ComponentGrid& g, const int first[3], const double* const w[3], double F, double* l) {
   if (interior(g, first, S)) {
     double* base = l + first[0] + g.stride[1] * first[1] + g.stride[2] * first[2];
     for (int tz = 0; tz < S; ++tz) {
@@ -434,7 +447,17 @@ RBFIB_HD inline void scatter(const ComponentGrid& g, const int first[3], const d
 
 struct ThreeGrids {
   ComponentGrid g[3];
+  WeightPlan plan;
 };
+
+/// Weights of component c of a point: pointers into pw and the first cells.
+template <class K>
+RBFIB_HD inline void component_weights(const PointWeights<K>& pw, const WeightPlan& plan, int c, const double* w[3], int first[3]) {
+  for (int a = 0; a < 3; ++a) {
+    w[a] = pw.w[plan.of[c][a]];
+    first[a] = pw.first[plan.of[c][a]];
+  }
+}
 
 /// Interpolation of all components at sorted position p (points sorted by bin_points).
 template <class K>
@@ -451,10 +474,15 @@ struct InterpolateSorted {
     constexpr int S = K::support;
     const double x[3] = {Xs[p], Xs[n + p], Xs[2 * n + p]};
     PointWeights<K> pw;
-    pw.compute(grids.g, x);
+    pw.compute(grids.g, grids.plan, x);
     const double* e[3] = {e0, e1, e2};
     const index_t k = perm[p];
-    for (int c = 0; c < 3; ++c) U[c * n + k] = gather<S>(grids.g[c], pw.first[c], pw.w[c], e[c]);
+    for (int c = 0; c < 3; ++c) {
+      const double* w[3];
+      int first[3];
+      component_weights(pw, grids.plan, c, w, first);
+      U[c * n + k] = gather<S>(grids.g[c], first, w, e[c]);
+    }
   }
 };
 
@@ -478,8 +506,13 @@ struct SpreadSlab {
     for (index_t p = start[s]; p < start[s + 1]; ++p) {
       const double x[3] = {Xs[p], Xs[n + p], Xs[2 * n + p]};
       PointWeights<K> pw;
-      pw.compute(grids.g, x);
-      for (int c = 0; c < 3; ++c) scatter<S>(grids.g[c], pw.first[c], pw.w[c], Fs[c * n + p] * scale, l[c]);
+      pw.compute(grids.g, grids.plan, x);
+      for (int c = 0; c < 3; ++c) {
+        const double* w[3];
+        int first[3];
+        component_weights(pw, grids.plan, c, w, first);
+        scatter<S>(grids.g[c], first, w, Fs[c * n + p] * scale, l[c]);
+      }
     }
   }
 };

@@ -21,6 +21,14 @@ struct BSpline3 {
     }
     return 0.0;
   }
+  /// w[t] = phi(t - 2 + delta), t = 0..3, for delta in (0, 1], without branches.
+  RBFIB_HD static void weights(double d, double w[4]) {
+    const double e = 1.0 - d;
+    w[0] = d * d * d / 6.0;
+    w[1] = 2.0 / 3.0 - e * e + 0.5 * e * e * e;
+    w[2] = 2.0 / 3.0 - d * d + 0.5 * d * d * d;
+    w[3] = e * e * e / 6.0;
+  }
 };
 
 }  // namespace rbfib::ib

@@ -18,6 +18,14 @@ struct Cosine4 {
     if (a <= 2.0) return 0.25 * (1.0 + cos(1.5707963267948966 * a));
     return 0.0;
   }
+  /// w[t] = phi(t - 2 + delta), t = 0..3, for delta in (0, 1]: one sine and one cosine.
+  RBFIB_HD static void weights(double d, double w[4]) {
+    const double c = cos(1.5707963267948966 * d), s = sin(1.5707963267948966 * d);
+    w[0] = 0.25 * (1.0 - c);
+    w[1] = 0.25 * (1.0 + s);
+    w[2] = 0.25 * (1.0 + c);
+    w[3] = 0.25 * (1.0 - s);
+  }
 };
 
 }  // namespace rbfib::ib

@@ -23,6 +23,15 @@ struct Peskin4 {
     }
     return 0.0;
   }
+  /// w[t] = phi(t - 2 + delta), t = 0..3, for delta in (0, 1]: all four share one square root,
+  /// sqrt(1 + 4 delta - 4 delta^2).
+  RBFIB_HD static void weights(double d, double w[4]) {
+    const double q = sqrt(1.0 + 4.0 * d - 4.0 * d * d);
+    w[0] = (1.0 + 2.0 * d - q) / 8.0;
+    w[1] = (1.0 + 2.0 * d + q) / 8.0;
+    w[2] = (3.0 - 2.0 * d + q) / 8.0;
+    w[3] = (3.0 - 2.0 * d - q) / 8.0;
+  }
 };
 
 }  // namespace rbfib::ib

@@ -24,6 +24,14 @@ struct Roma3 {
     }
     return 0.0;
   }
+  /// w[t] = phi(t - 1 + delta), t = 0..2, for delta in (-1/2, 1/2]: one square root,
+  /// sqrt(1 - 3 delta^2).
+  RBFIB_HD static void weights(double d, double w[3]) {
+    const double q = sqrt(1.0 - 3.0 * d * d);
+    w[0] = (2.0 + 3.0 * d - q) / 6.0;
+    w[1] = (1.0 + q) / 3.0;
+    w[2] = (2.0 - 3.0 * d - q) / 6.0;
+  }
 };
 
 }  // namespace rbfib::ib

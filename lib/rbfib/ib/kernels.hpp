@@ -4,6 +4,10 @@
 //   static constexpr int support;          // s of eq. 4.3
 //   static constexpr const char* name;     // the name chosen at run time
 //   RBFIB_HD static double phi(double r);  // delta_1(r), r in units of h
+// and optionally, for speed,
+//   RBFIB_HD static void weights(double delta, double w[support]);
+// giving w[t] = phi(t - floor(s/2) + delta) for delta in (0, 1] (s even) or (-1/2, 1/2] (s odd),
+// the s weights of one axis (grid.hpp); without it they are s calls of phi.
 // Adding a kernel: one header like kernel_bspline3.hpp, and its name in `Kernels` below.
 #include "rbfib/core/error.hpp"
 #include "rbfib/ib/kernel_bspline3.hpp"
@@ -20,6 +24,16 @@ template <class... K>
 struct KernelList {};
 
 using Kernels = KernelList<Roma3, BSpline3, Cosine4, Peskin4>;
+
+/// The s weights of one axis for offset delta (see above).
+template <class K>
+RBFIB_HD inline void axis_weights(double delta, double* w) {
+  if constexpr (requires(double* v) { K::weights(0.0, v); }) {
+    K::weights(delta, w);
+  } else {
+    for (int t = 0; t < K::support; ++t) w[t] = K::phi(double(t - K::support / 2) + delta);
+  }
+}
 
 /// Names of all kernels, in the order of `Kernels`.
 std::vector<std::string> kernel_names();
