@@ -283,12 +283,14 @@ void Interaction::bin_points(index_t n, const dvec& X, const dvec* F) {
   perm_.resize(n);
   counts_.resize(bins * chunks);
   slab_start_.resize(slabs_ + 1);
-  for_each_index(n, detail::RowBin{y, z, ptr(X), n, ptr(bins_)});
+  xcell_.resize(n);
+  for_each_index(n, detail::RowBin{grids_[0].axis[0], y, z, ptr(X), n, ptr(bins_), ptr(xcell_)});
   thrust::fill(counts_.begin(), counts_.end(), 0);
   for_each_index(chunks, detail::CountChunk{ptr(bins_), n, chunks, ptr(counts_)});
   thrust::exclusive_scan(counts_.begin(), counts_.end(), counts_.begin());
   for_each_index(slabs_ + 1, detail::SlabStart{ptr(counts_), chunks, slabs_, planes, rows, n, ptr(slab_start_)});
   for_each_index(chunks, detail::PlaceChunk{ptr(bins_), n, chunks, ptr(counts_), ptr(perm_)});
+  for_each_index(bins, detail::SortRow{ptr(counts_), chunks, ptr(xcell_), ptr(perm_)});
   sorted_x_.resize(3 * n);
   if (F) sorted_f_.resize(3 * n);
   for_each_index(n, detail::GatherSorted{ptr(perm_), n, ptr(X), F ? ptr(*F) : nullptr, ptr(sorted_x_),

@@ -25,7 +25,8 @@
 //                                summed by one thread)
 //   Spreading::preallocated      Alg. 4.5 (buffer of sz vectors owned by this object)
 //   Spreading::on_the_fly        Alg. 4.6 (buffer allocated and freed in each call)
-//   Spreading::binned            points sorted by grid cell (counting sort of (z, y) cell rows),
+//   Spreading::binned            points sorted by grid cell (counting sort of (z, y) cell rows,
+//                                then by x cell within each row),
 //                                z-slabs of at least s + 1 planes spread in two colours so that no
 //                                two concurrent slabs touch the same unknown; separable weights.
 //                                Not in the seed: a CPU-oriented variant, equal to Alg. 4.2.
@@ -93,7 +94,7 @@ class Interaction {
   dvec buffer_;  // Alg. 4.5: buffer_width vectors of the largest component, zero between calls
   // workspace, reused between calls
   device_vector<key_t> keys_, keys_reduced_;
-  device_vector<int> perm_, bins_, counts_, slab_start_, segments_;
+  device_vector<int> perm_, bins_, xcell_, counts_, slab_start_, segments_;
   index_t segment_count_ = 0;
   dvec values_, values_reduced_, sorted_x_, sorted_f_;
   int slabs_ = 1;

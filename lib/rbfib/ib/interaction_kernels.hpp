@@ -8,6 +8,15 @@
 #include "rbfib/ib/kernels.hpp"
 #include "rbfib/ib/shifts.hpp"
 
+// The per-point helpers below must inline into the loops that call them.
+#if defined(__CUDACC__)
+#define RBFIB_IB_INLINE __forceinline__
+#elif defined(__GNUC__)
+#define RBFIB_IB_INLINE inline __attribute__((always_inline))
+#else
+#define RBFIB_IB_INLINE inline
+#endif
+
 namespace rbfib::ib::detail {
 
 /// Cell and delta of point k along all axes.
@@ -250,11 +259,15 @@ RBFIB_HD inline int plain_cell(const GridAxis& a, double x) {
 
 /// bin = (z cell) N_y + (y cell): rows of cells, z slowest.
 struct RowBin {
-  GridAxis y, z;
+  GridAxis x, y, z;
   const double* X;
   index_t n;
   int* bin;
-  RBFIB_HD void operator()(index_t i) const { bin[i] = plain_cell(z, X[2 * n + i]) * y.cells + plain_cell(y, X[n + i]); }
+  int* xcell;
+  RBFIB_HD void operator()(index_t i) const {
+    bin[i] = plain_cell(z, X[2 * n + i]) * y.cells + plain_cell(y, X[n + i]);
+    xcell[i] = plain_cell(x, X[i]);
+  }
 };
 
 /// Counting sort, pass 1: chunk c counts its points per bin into counts[bin C + c].
@@ -279,6 +292,29 @@ struct PlaceChunk {
   RBFIB_HD void operator()(index_t c) const {
     const index_t lo = n * c / chunks, hi = n * (c + 1) / chunks;
     for (index_t i = lo; i < hi; ++i) perm[offsets[index_t(bin[i]) * chunks + c]++] = int(i);
+  }
+};
+
+/// After placement: sorts the points of each (z, y) row by their x cell (insertion sort; rows
+/// hold a few points each), stable, so that the order is by cell (z, y, x) and deterministic.
+struct SortRow {
+  const int* ends;  // counts after placement: ends[b C + C - 1] is the end of row b
+  int chunks;
+  const int* xcell;
+  int* perm;
+  RBFIB_HD void operator()(index_t b) const {
+    const int lo = b == 0 ? 0 : ends[(b - 1) * chunks + chunks - 1];
+    const int hi = ends[b * chunks + chunks - 1];
+    for (int p = lo + 1; p < hi; ++p) {
+      const int k = perm[p];
+      const int key = xcell[k];
+      int q = p - 1;
+      while (q >= lo && xcell[perm[q]] > key) {
+        perm[q + 1] = perm[q];
+        --q;
+      }
+      perm[q + 1] = k;
+    }
   }
 };
 
@@ -330,7 +366,7 @@ struct PointWeights {
   static constexpr int S = K::support;
   int first[9];
   double w[9][S];
-  RBFIB_HD void compute(const ComponentGrid* g, const WeightPlan& plan, const double x[3]) {
+  RBFIB_HD RBFIB_IB_INLINE void compute(const ComponentGrid* g, const WeightPlan& plan, const double x[3]) {
     for (int k = 0; k < plan.count; ++k) {
       const int a = plan.axis[k];
       double delta;
@@ -361,7 +397,7 @@ struct Stencil {
 
 /// Whether the support lies inside the grid without wrapping along any axis: then the unknowns
 /// are first + (tx, ty, tz) . stride and no index needs checking.
-RBFIB_HD inline bool interior(const ComponentGrid& g, const int first[3], int S) {
+RBFIB_HD RBFIB_IB_INLINE bool interior(const ComponentGrid& g, const int first[3], int S) {
   for (int a = 0; a < 3; ++a)
     if (first[a] < 0 || first[a] + S > g.axis[a].n) return false;
   return true;
@@ -369,7 +405,7 @@ RBFIB_HD inline bool interior(const ComponentGrid& g, const int first[3], int S)
 
 /// (v0 + v1) + (v2 + v3) + ...: a short dependency chain.
 template <int S>
-RBFIB_HD inline double pairwise_sum(const double* v) {
+RBFIB_HD RBFIB_IB_INLINE double pairwise_sum(const double* v) {
   if constexpr (S == 1) {
     return v[0];
   } else {
@@ -379,7 +415,7 @@ RBFIB_HD inline double pairwise_sum(const double* v) {
 
 /// sum over the support of w_x w_y w_z e (tensor-product order: x, then y, then z).
 template <int S>
-RBFIB_HD inline double gather(const ComponentGrid& g, const int first[3], const double* const w[3], const double* e) {
+RBFIB_HD RBFIB_IB_INLINE double gather(const ComponentGrid& g, const int first[3], const double* const w[3], const double* e) {
   if (interior(g, first, S)) {
     // All s^2 row sums are independent (their loads overlap); then pairwise sums along y and z.
     const double* base = e + first[0] + g.stride[1] * first[1] + g.stride[2] * first[2];
@@ -417,7 +453,7 @@ RBFIB_HD inline double gather(const ComponentGrid& g, const int first[3], const 
 
 /// l += w_x w_y w_z F over the support.
 template <int S>
-RBFIB_HD inline void scatter(const ComponentGrid& g, const int first[3], const double* const w[3], double F, double* l) {
+RBFIB_HD RBFIB_IB_INLINE void scatter(const ComponentGrid& g, const int first[3], const double* const w[3], double F, double* l) {
   if (interior(g, first, S)) {
     double* base = l + first[0] + g.stride[1] * first[1] + g.stride[2] * first[2];
     for (int tz = 0; tz < S; ++tz) {
@@ -452,7 +488,7 @@ struct ThreeGrids {
 
 /// Weights of component c of a point: pointers into pw and the first cells.
 template <class K>
-RBFIB_HD inline void component_weights(const PointWeights<K>& pw, const WeightPlan& plan, int c, const double* w[3], int first[3]) {
+RBFIB_HD RBFIB_IB_INLINE void component_weights(const PointWeights<K>& pw, const WeightPlan& plan, int c, const double* w[3], int first[3]) {
   for (int a = 0; a < 3; ++a) {
     w[a] = pw.w[plan.of[c][a]];
     first[a] = pw.first[plan.of[c][a]];
