@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <cmath>
 #include <random>
 #include <string>
@@ -177,6 +178,12 @@ int main(int argc, char** argv) {
     par["steps_seed_algorithms"] = steps_serial;
     par["buffer_width_sz"] = buffer_width;
     par["threads"] = max_threads;
+    {
+      std::ifstream in("/proc/loadavg");
+      double load = NAN;
+      in >> load;
+      par["load_average_at_start"] = load;  // this machine is shared: times are indicative
+    }
     par["machine_paper"] = "48x Intel Xeon E5-2697 v2 2.70GHz (16 cores used), libiomp5, clang 7.0.1";
     st::log(opt, "parameters: n = " + std::to_string(n) + ", box = 16 um, kernel " + p.kernel + ", gamma_dot = 1000/s, k = 1e-2 dyn/cm, dt = 0.1 us, " +
                      std::to_string(steps) + " steps (" + std::to_string(steps_serial) + " for the serial algorithms), " +

@@ -82,18 +82,6 @@ Interaction::Interaction(const std::array<Box, 3>& components, const std::string
       require(q.origin == p.origin, f + ".origin", q.origin, "all components must share the origin of component 0");
       require(q.periodic == p.periodic, f + ".periodic", q.periodic, "all components must share the boundary kind");
     }
-  // Weight sets shared between components with equal staggering along an axis.
-  for (int c = 0; c < 3; ++c)
-    for (int a = 0; a < 3; ++a) {
-      int k = 0;
-      while (k < plan_.count && !(plan_.axis[k] == a && grids_[plan_.comp[k]].axis[a].g == grids_[c].axis[a].g)) ++k;
-      if (k == plan_.count) {
-        plan_.axis[k] = a;
-        plan_.comp[k] = c;
-        ++plan_.count;
-      }
-      plan_.of[c][a] = k;
-    }
   // z-slabs of at least s + 1 planes; an even number of them on a periodic axis so that the
   // two colours alternate around the period.
   const GridAxis& z = grids_[0].axis[2];
@@ -151,9 +139,8 @@ void Interaction::interpolate_impl(const dvec& X, const std::array<dvec, 3>& u, 
   if (n == 0) return;
   if (alg == Interpolation::binned) {
     bin_points(n, X, nullptr);
-    detail::InterpolateSorted<K> f{{{grids_[0], grids_[1], grids_[2]}, plan_}, ptr(sorted_x_), ptr(perm_), n,
-                                   ptr(u[0]), ptr(u[1]), ptr(u[2]), ptr(U)};
-    for_each_index(n, f);
+    for (int c = 0; c < 3; ++c)
+      for_each_index(n, detail::InterpolateSorted<K>{grids_[c], ptr(sorted_x_), ptr(perm_), n, ptr(u[c]), ptr(U) + c * n});
     return;
   }
   for (int c = 0; c < 3; ++c) {
@@ -176,7 +163,7 @@ void Interaction::spread_impl(const dvec& X, const dvec& F, std::array<dvec, 3>&
     for (int colour = 0; colour < 2; ++colour) {
       const int tasks = (slabs_ - colour + 1) / 2;
       if (tasks == 0) continue;
-      detail::SpreadSlab<K> s{{{grids_[0], grids_[1], grids_[2]}, plan_}, ptr(sorted_x_), ptr(sorted_f_), ptr(slab_start_), n,
+      detail::SpreadSlab<K> s{{{grids_[0], grids_[1], grids_[2]}}, ptr(sorted_x_), ptr(sorted_f_), ptr(slab_start_), n,
                               scale, colour, ptr(f[0]), ptr(f[1]), ptr(f[2])};
       for_each_index(tasks, s);
     }

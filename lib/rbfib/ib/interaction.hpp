@@ -98,7 +98,6 @@ class Interaction {
   index_t segment_count_ = 0;
   dvec values_, values_reduced_, sorted_x_, sorted_f_;
   int slabs_ = 1;
-  detail::WeightPlan plan_;
 };
 
 }  // namespace rbfib::ib

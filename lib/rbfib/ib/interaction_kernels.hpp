@@ -350,33 +350,6 @@ struct GatherSorted {
   }
 };
 
-/// Which 1D weight sets a point needs: set k is along axis axis[k] with the staggering of
-/// component comp[k]; component c uses sets of[c][0..2]. Components sharing a staggering along
-/// an axis share the set (on the MAC grid: 6 sets for the 9 component-axis pairs).
-struct WeightPlan {
-  int count = 0;
-  int axis[9], comp[9];
-  int of[3][3];
-};
-
-/// Separable weights of one point: w[k][t] = phi(t - s/2 + delta) for each set of the plan, and
-/// the first support cell first[k].
-template <class K>
-struct PointWeights {
-  static constexpr int S = K::support;
-  int first[9];
-  double w[9][S];
-  RBFIB_HD RBFIB_IB_INLINE void compute(const ComponentGrid* g, const WeightPlan& plan, const double x[3]) {
-    for (int k = 0; k < plan.count; ++k) {
-      const int a = plan.axis[k];
-      double delta;
-      const int cell = cell_of<S>(g[plan.comp[k]].axis[a], x[a], delta);
-      first[k] = cell - S / 2;
-      axis_weights<K>(delta, w[k]);
-    }
-  }
-};
-
 /// The support of one point in one component: unknown offsets of the s rows along y and z and
 /// of the s points along x (-1: none), and whether the x points are contiguous (the usual case).
 template <int S>
@@ -483,46 +456,43 @@ RBFIB_HD RBFIB_IB_INLINE void scatter(const ComponentGrid& g, const int first[3]
 
 struct ThreeGrids {
   ComponentGrid g[3];
-  WeightPlan plan;
 };
 
-/// Weights of component c of a point: pointers into pw and the first cells.
+/// Separable weights of one point for one component: w[a][t] = phi(t - s/2 + delta_a) and the
+/// first support cell along each axis.
 template <class K>
-RBFIB_HD RBFIB_IB_INLINE void component_weights(const PointWeights<K>& pw, const WeightPlan& plan, int c, const double* w[3], int first[3]) {
+RBFIB_HD RBFIB_IB_INLINE void component_weights(const ComponentGrid& g, const double x[3], int first[3], double w[3][K::support]) {
+  constexpr int S = K::support;
   for (int a = 0; a < 3; ++a) {
-    w[a] = pw.w[plan.of[c][a]];
-    first[a] = pw.first[plan.of[c][a]];
+    double delta;
+    first[a] = cell_of<S>(g.axis[a], x[a], delta) - S / 2;
+    axis_weights<K>(delta, w[a]);
   }
 }
 
-/// Interpolation of all components at sorted position p (points sorted by bin_points).
+/// Interpolation of one component at sorted position p (points sorted by bin_points). One pass
+/// per component keeps the working set of the grid small (one component's rows).
 template <class K>
 struct InterpolateSorted {
-  ThreeGrids grids;
+  ComponentGrid g;
   const double* Xs;
   const int* perm;
   index_t n;
-  const double* e0;
-  const double* e1;
-  const double* e2;
-  double* U;
+  const double* e;
+  double* E;
   RBFIB_HD void operator()(index_t p) const {
     constexpr int S = K::support;
     const double x[3] = {Xs[p], Xs[n + p], Xs[2 * n + p]};
-    PointWeights<K> pw;
-    pw.compute(grids.g, grids.plan, x);
-    const double* e[3] = {e0, e1, e2};
-    const index_t k = perm[p];
-    for (int c = 0; c < 3; ++c) {
-      const double* w[3];
-      int first[3];
-      component_weights(pw, grids.plan, c, w, first);
-      U[c * n + k] = gather<S>(grids.g[c], first, w, e[c]);
-    }
+    int first[3];
+    double w[3][S];
+    component_weights<K>(g, x, first, w);
+    const double* wp[3] = {w[0], w[1], w[2]};
+    E[perm[p]] = gather<S>(g, first, wp, e);
   }
 };
 
-/// Spreading of all sorted points of one z-slab of the given colour (slab 2t + colour).
+/// Spreading of all sorted points of one z-slab of the given colour (slab 2t + colour), one
+/// component after the other.
 template <class K>
 struct SpreadSlab {
   ThreeGrids grids;
@@ -539,15 +509,15 @@ struct SpreadSlab {
     constexpr int S = K::support;
     const index_t s = 2 * t + colour;
     double* l[3] = {l0, l1, l2};
-    for (index_t p = start[s]; p < start[s + 1]; ++p) {
-      const double x[3] = {Xs[p], Xs[n + p], Xs[2 * n + p]};
-      PointWeights<K> pw;
-      pw.compute(grids.g, grids.plan, x);
-      for (int c = 0; c < 3; ++c) {
-        const double* w[3];
+    for (int c = 0; c < 3; ++c) {
+      const ComponentGrid& g = grids.g[c];
+      for (index_t p = start[s]; p < start[s + 1]; ++p) {
+        const double x[3] = {Xs[p], Xs[n + p], Xs[2 * n + p]};
         int first[3];
-        component_weights(pw, grids.plan, c, w, first);
-        scatter<S>(grids.g[c], first, w, Fs[c * n + p] * scale, l[c]);
+        double w[3][S];
+        component_weights<K>(g, x, first, w);
+        const double* wp[3] = {w[0], w[1], w[2]};
+        scatter<S>(g, first, wp, Fs[c * n + p] * scale, l[c]);
       }
     }
   }
