@@ -276,8 +276,9 @@ void Interaction::bin_points(index_t n, const dvec& X, const dvec* F) {
   for_each_index(chunks, detail::CountChunk{ptr(bins_), n, chunks, ptr(counts_)});
   thrust::exclusive_scan(counts_.begin(), counts_.end(), counts_.begin());
   for_each_index(slabs_ + 1, detail::SlabStart{ptr(counts_), chunks, slabs_, planes, rows, n, ptr(slab_start_)});
-  for_each_index(chunks, detail::PlaceChunk{ptr(bins_), n, chunks, ptr(counts_), ptr(perm_)});
-  for_each_index(bins, detail::SortRow{ptr(counts_), chunks, ptr(xcell_), ptr(perm_)});
+  sorted_xcell_.resize(n);
+  for_each_index(chunks, detail::PlaceChunk{ptr(bins_), ptr(xcell_), n, chunks, ptr(counts_), ptr(perm_), ptr(sorted_xcell_)});
+  for_each_index(bins, detail::SortRow{ptr(counts_), chunks, ptr(sorted_xcell_), ptr(perm_)});
   sorted_x_.resize(3 * n);
   if (F) sorted_f_.resize(3 * n);
   for_each_index(n, detail::GatherSorted{ptr(perm_), n, ptr(X), F ? ptr(*F) : nullptr, ptr(sorted_x_),

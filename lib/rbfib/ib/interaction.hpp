@@ -94,7 +94,7 @@ class Interaction {
   dvec buffer_;  // Alg. 4.5: buffer_width vectors of the largest component, zero between calls
   // workspace, reused between calls
   device_vector<key_t> keys_, keys_reduced_;
-  device_vector<int> perm_, bins_, xcell_, counts_, slab_start_, segments_;
+  device_vector<int> perm_, bins_, xcell_, sorted_xcell_, counts_, slab_start_, segments_;
   index_t segment_count_ = 0;
   dvec values_, values_reduced_, sorted_x_, sorted_f_;
   int slabs_ = 1;

@@ -285,35 +285,45 @@ struct CountChunk {
 /// Counting sort, pass 2 (after an exclusive scan of counts): stable placement.
 struct PlaceChunk {
   const int* bin;
+  const int* xcell;
   index_t n;
   int chunks;
   int* offsets;
   int* perm;
+  int* sorted_xcell;
   RBFIB_HD void operator()(index_t c) const {
     const index_t lo = n * c / chunks, hi = n * (c + 1) / chunks;
-    for (index_t i = lo; i < hi; ++i) perm[offsets[index_t(bin[i]) * chunks + c]++] = int(i);
+    for (index_t i = lo; i < hi; ++i) {
+      const int p = offsets[index_t(bin[i]) * chunks + c]++;
+      perm[p] = int(i);
+      sorted_xcell[p] = xcell[i];
+    }
   }
 };
 
-/// After placement: sorts the points of each (z, y) row by their x cell (insertion sort; rows
-/// hold a few points each), stable, so that the order is by cell (z, y, x) and deterministic.
+/// After placement: sorts the points of each (z, y) row by their x cell (stable insertion sort
+/// on the keys in sorted order), so that the order is by cell (z, y, x) and deterministic. Rows
+/// with more than max_row points keep their placement order (locality only; no quadratic cost).
 struct SortRow {
+  static constexpr int max_row = 64;
   const int* ends;  // counts after placement: ends[b C + C - 1] is the end of row b
   int chunks;
-  const int* xcell;
+  int* key;         // x cells in sorted order
   int* perm;
   RBFIB_HD void operator()(index_t b) const {
     const int lo = b == 0 ? 0 : ends[(b - 1) * chunks + chunks - 1];
     const int hi = ends[b * chunks + chunks - 1];
+    if (hi - lo > max_row) return;
     for (int p = lo + 1; p < hi; ++p) {
-      const int k = perm[p];
-      const int key = xcell[k];
+      const int k = perm[p], kk = key[p];
       int q = p - 1;
-      while (q >= lo && xcell[perm[q]] > key) {
+      while (q >= lo && key[q] > kk) {
         perm[q + 1] = perm[q];
+        key[q + 1] = key[q];
         --q;
       }
       perm[q + 1] = k;
+      key[q + 1] = kk;
     }
   }
 };
