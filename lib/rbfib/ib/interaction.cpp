@@ -6,6 +6,8 @@
 
 #include <thrust/copy.h>
 #include <thrust/fill.h>
+#include <thrust/iterator/permutation_iterator.h>
+#include <thrust/iterator/transform_iterator.h>
 #include <thrust/reduce.h>
 #include <thrust/scan.h>
 #include <thrust/sort.h>
@@ -273,12 +275,15 @@ void Interaction::bin_points(index_t n, const dvec& X, const dvec* F) {
   xcell_.resize(n);
   for_each_index(n, detail::RowBin{grids_[0].axis[0], y, z, ptr(X), n, ptr(bins_), ptr(xcell_)});
   thrust::fill(counts_.begin(), counts_.end(), 0);
-  for_each_index(chunks, detail::CountChunk{ptr(bins_), n, chunks, ptr(counts_)});
-  thrust::exclusive_scan(counts_.begin(), counts_.end(), counts_.begin());
-  for_each_index(slabs_ + 1, detail::SlabStart{ptr(counts_), chunks, slabs_, planes, rows, n, ptr(slab_start_)});
+  for_each_index(chunks, detail::CountChunk{ptr(bins_), n, bins, chunks, ptr(counts_)});
+  // Exclusive scan in (bin, chunk) order over the chunk-major counters: a stable counting sort.
+  const auto order = thrust::make_permutation_iterator(
+      counts_.begin(), thrust::make_transform_iterator(thrust::counting_iterator<index_t>(0), detail::ChunkMajor{bins, chunks}));
+  thrust::exclusive_scan(order, order + bins * chunks, order);
+  for_each_index(slabs_ + 1, detail::SlabStart{ptr(counts_), slabs_, planes, rows, n, ptr(slab_start_)});
   sorted_xcell_.resize(n);
-  for_each_index(chunks, detail::PlaceChunk{ptr(bins_), ptr(xcell_), n, chunks, ptr(counts_), ptr(perm_), ptr(sorted_xcell_)});
-  for_each_index(bins, detail::SortRow{ptr(counts_), chunks, ptr(sorted_xcell_), ptr(perm_)});
+  for_each_index(chunks, detail::PlaceChunk{ptr(bins_), ptr(xcell_), n, bins, chunks, ptr(counts_), ptr(perm_), ptr(sorted_xcell_)});
+  for_each_index(bins, detail::SortRow{ptr(counts_), bins, chunks, ptr(sorted_xcell_), ptr(perm_)});
   sorted_x_.resize(3 * n);
   if (F) sorted_f_.resize(3 * n);
   for_each_index(n, detail::GatherSorted{ptr(perm_), n, ptr(X), F ? ptr(*F) : nullptr, ptr(sorted_x_),

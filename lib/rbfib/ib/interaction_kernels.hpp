@@ -270,31 +270,41 @@ struct RowBin {
   }
 };
 
-/// Counting sort, pass 1: chunk c counts its points per bin into counts[bin C + c].
+/// Counting sort, pass 1: chunk c counts its points per bin into counts[c B + bin] (chunk-major,
+/// so that concurrent chunks never share a cache line of counters).
 struct CountChunk {
   const int* bin;
-  index_t n;
+  index_t n, bins;
   int chunks;
   int* counts;
   RBFIB_HD void operator()(index_t c) const {
     const index_t lo = n * c / chunks, hi = n * (c + 1) / chunks;
-    for (index_t i = lo; i < hi; ++i) ++counts[index_t(bin[i]) * chunks + c];
+    int* mine = counts + c * bins;
+    for (index_t i = lo; i < hi; ++i) ++mine[bin[i]];
   }
+};
+
+/// Storage position of the (bin-major, chunk-minor) scan index i = bin C + c.
+struct ChunkMajor {
+  index_t bins;
+  int chunks;
+  RBFIB_HD index_t operator()(index_t i) const { return (i % chunks) * bins + i / chunks; }
 };
 
 /// Counting sort, pass 2 (after an exclusive scan of counts): stable placement.
 struct PlaceChunk {
   const int* bin;
   const int* xcell;
-  index_t n;
+  index_t n, bins;
   int chunks;
   int* offsets;
   int* perm;
   int* sorted_xcell;
   RBFIB_HD void operator()(index_t c) const {
     const index_t lo = n * c / chunks, hi = n * (c + 1) / chunks;
+    int* mine = offsets + c * bins;
     for (index_t i = lo; i < hi; ++i) {
-      const int p = offsets[index_t(bin[i]) * chunks + c]++;
+      const int p = mine[bin[i]]++;
       perm[p] = int(i);
       sorted_xcell[p] = xcell[i];
     }
@@ -306,13 +316,15 @@ struct PlaceChunk {
 /// with more than max_row points keep their placement order (locality only; no quadratic cost).
 struct SortRow {
   static constexpr int max_row = 64;
-  const int* ends;  // counts after placement: ends[b C + C - 1] is the end of row b
+  const int* ends;  // offsets after placement: ends[(C - 1) B + b] is the end of row b
+  index_t bins;
   int chunks;
   int* key;         // x cells in sorted order
   int* perm;
   RBFIB_HD void operator()(index_t b) const {
-    const int lo = b == 0 ? 0 : ends[(b - 1) * chunks + chunks - 1];
-    const int hi = ends[b * chunks + chunks - 1];
+    const int* last = ends + index_t(chunks - 1) * bins;
+    const int lo = b == 0 ? 0 : last[b - 1];
+    const int hi = last[b];
     if (hi - lo > max_row) return;
     for (int p = lo + 1; p < hi; ++p) {
       const int k = perm[p], kk = key[p];
@@ -330,8 +342,8 @@ struct SortRow {
 
 /// First sorted position of each z-slab (slab s covers planes [s N_z / slabs, (s+1) N_z / slabs)).
 struct SlabStart {
-  const int* offsets;  // scanned counts, before placement
-  int chunks, slabs, planes, rows;
+  const int* offsets;  // scanned counts (chunk 0 first), before placement
+  int slabs, planes, rows;
   index_t n;
   int* start;
   RBFIB_HD void operator()(index_t s) const {
@@ -340,7 +352,7 @@ struct SlabStart {
       return;
     }
     const index_t plane = index_t(s) * planes / slabs;
-    start[s] = offsets[plane * rows * chunks];
+    start[s] = offsets[plane * rows];
   }
 };
 
