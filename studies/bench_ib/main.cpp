@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <random>
@@ -113,6 +114,8 @@ int main(int argc, char** argv) {
     par["threads"] = threads;
     par["repeats"] = repeats;
     par["cpu_mhz"] = cpu_mhz();
+    const char* policy = std::getenv("OMP_WAIT_POLICY");
+    par["OMP_WAIT_POLICY"] = policy ? policy : "unset (libgomp default: spin, then sleep)";
 
     // 1. Machine model.
     const double bw = triad_bandwidth();
