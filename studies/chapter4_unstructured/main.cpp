@@ -25,6 +25,7 @@
 #include <chrono>
 #include <fstream>
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
@@ -159,7 +160,7 @@ int main(int argc, char** argv) {
     const std::vector<int> refinements = {16, 32, 64, 128};
     // Steps per timing: the binned variants are cheap, the seed's algorithms (literal per-shift
     // weights, one pass per shift) are not; full scale uses the seed's 1000 steps, and 20 for those.
-    const int steps = full ? 1000 : 3;
+    const int steps = full ? 1000 : 10;
     const int steps_serial = full ? 20 : 1;
     const int max_threads = omp_get_max_threads();
     std::vector<index_t> weak_n = {index_t(1) << 16, index_t(1) << 17, index_t(1) << 18, index_t(1) << 19};
@@ -179,6 +180,8 @@ int main(int argc, char** argv) {
     par["buffer_width_sz"] = buffer_width;
     par["threads"] = max_threads;
     {
+      const char* policy = std::getenv("OMP_WAIT_POLICY");
+      par["OMP_WAIT_POLICY"] = policy ? policy : "unset (libgomp default: spin, then sleep)";
       std::ifstream in("/proc/loadavg");
       double load = NAN;
       in >> load;
