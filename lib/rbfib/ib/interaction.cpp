@@ -18,6 +18,8 @@
 
 namespace rbfib::ib {
 
+static_assert(sizeof(detail::Pack) == buffer_width * sizeof(double), "Algs. 4.5/4.6 reduce packs of buffer_width values");
+
 const char* to_string(Interpolation a) {
   switch (a) {
     case Interpolation::serial: return "serial";

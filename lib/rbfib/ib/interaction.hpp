@@ -33,7 +33,6 @@
 #include "rbfib/core/exec.hpp"
 #include "rbfib/grid/box.hpp"
 #include "rbfib/ib/grid.hpp"
-#include "rbfib/ib/interaction_kernels.hpp"
 
 #include <array>
 #include <string>
