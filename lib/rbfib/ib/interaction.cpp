@@ -161,7 +161,8 @@ void Interaction::spread_impl(const dvec& X, const dvec& F, std::array<dvec, 3>&
   const index_t n = X.size() / 3;
   const double scale = 1.0 / cell_volume();
   if (alg == Spreading::binned) {
-    for (int c = 0; c < 3; ++c) thrust::fill(f[c].begin(), f[c].end(), 0.0);
+    const index_t most = std::max({f[0].size(), f[1].size(), f[2].size()});
+    for_each_index(most, detail::ZeroThree{index_t(f[0].size()), index_t(f[1].size()), index_t(f[2].size()), ptr(f[0]), ptr(f[1]), ptr(f[2])});
     if (n == 0) return;
     bin_points(n, X, &F);
     for (int colour = 0; colour < 2; ++colour) {
@@ -282,10 +283,10 @@ void Interaction::bin_points(index_t n, const dvec& X, const dvec* F) {
   const auto order = thrust::make_permutation_iterator(
       counts_.begin(), thrust::make_transform_iterator(thrust::counting_iterator<index_t>(0), detail::ChunkMajor{bins, chunks}));
   thrust::exclusive_scan(order, order + bins * chunks, order);
-  for_each_index(slabs_ + 1, detail::SlabStart{ptr(counts_), slabs_, planes, rows, n, ptr(slab_start_)});
   sorted_xcell_.resize(n);
   for_each_index(chunks, detail::PlaceChunk{ptr(bins_), ptr(xcell_), n, bins, chunks, ptr(counts_), ptr(perm_), ptr(sorted_xcell_)});
-  for_each_index(bins, detail::SortRow{ptr(counts_), bins, chunks, ptr(sorted_xcell_), ptr(perm_)});
+  for_each_index(bins, detail::SortRow{ptr(counts_), bins, chunks, ptr(sorted_xcell_), ptr(perm_), slabs_, planes, rows,
+                                       ptr(slab_start_)});
   sorted_x_.resize(3 * n);
   if (F) sorted_f_.resize(3 * n);
   for_each_index(n, detail::GatherSorted{ptr(perm_), n, ptr(X), F ? ptr(*F) : nullptr, ptr(sorted_x_),

@@ -314,6 +314,8 @@ struct PlaceChunk {
 /// After placement: sorts the points of each (z, y) row by their x cell (stable insertion sort
 /// on the keys in sorted order), so that the order is by cell (z, y, x) and deterministic. Rows
 /// with more than max_row points keep their placement order (locality only; no quadratic cost).
+/// Also records the first sorted position of each z-slab (slab s covers the planes
+/// [s N_z / slabs, (s+1) N_z / slabs)), start[slabs] = n.
 struct SortRow {
   static constexpr int max_row = 64;
   const int* ends;  // offsets after placement: ends[(C - 1) B + b] is the end of row b
@@ -321,10 +323,18 @@ struct SortRow {
   int chunks;
   int* key;         // x cells in sorted order
   int* perm;
+  int slabs, planes, rows;
+  int* start;
   RBFIB_HD void operator()(index_t b) const {
     const int* last = ends + index_t(chunks - 1) * bins;
     const int lo = b == 0 ? 0 : last[b - 1];
     const int hi = last[b];
+    if (b % rows == 0) {
+      const index_t plane = b / rows;
+      for (int s = 0; s < slabs; ++s)
+        if (index_t(s) * planes / slabs == plane) start[s] = lo;
+    }
+    if (b == bins - 1) start[slabs] = hi;
     if (hi - lo > max_row) return;
     for (int p = lo + 1; p < hi; ++p) {
       const int k = perm[p], kk = key[p];
@@ -340,19 +350,16 @@ struct SortRow {
   }
 };
 
-/// First sorted position of each z-slab (slab s covers planes [s N_z / slabs, (s+1) N_z / slabs)).
-struct SlabStart {
-  const int* offsets;  // scanned counts (chunk 0 first), before placement
-  int slabs, planes, rows;
-  index_t n;
-  int* start;
-  RBFIB_HD void operator()(index_t s) const {
-    if (s == slabs) {
-      start[s] = int(n);
-      return;
-    }
-    const index_t plane = index_t(s) * planes / slabs;
-    start[s] = offsets[plane * rows];
+/// Zeroes the three output components of spreading (one launch for all three).
+struct ZeroThree {
+  index_t n0, n1, n2;
+  double* l0;
+  double* l1;
+  double* l2;
+  RBFIB_HD void operator()(index_t m) const {
+    if (m < n0) l0[m] = 0.0;
+    if (m < n1) l1[m] = 0.0;
+    if (m < n2) l2[m] = 0.0;
   }
 };
 
