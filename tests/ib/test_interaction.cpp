@@ -441,3 +441,46 @@ TEST(IbGrid, CellsAndIndexing) {
 
 }  // namespace
 }  // namespace rbfib::ib
+
+namespace rbfib::ib {
+namespace {
+
+// The binned spreading splits z into slabs of at least s + 1 planes, an even number of them on a
+// periodic axis; grids with few z cells hit the edge cases (one slab, two slabs, odd counts on a
+// wall axis). Each must equal serial Alg. 4.2 to rounding; the bound is the summation-order bound
+// of expect_equal_to_rounding with every point counted (n terms) and the closed-form weights.
+TEST(IbInteraction, BinnedSlabsForFewPlanes) {
+  for (const std::string& kernel : kernel_names())
+    for (bool walls : {false, true})
+      for (int cz : {4, 5, 8, 9, 10, 11}) {  // s + 1 = 4 or 5: one slab, two, odd counts
+        const auto boxes = mac_boxes({8, 6, cz}, {0.8, 0.6, 0.1 * cz}, {true, true, !walls});
+        Interaction ib(boxes, kernel);
+        const size_t n = 200;
+        std::mt19937_64 rng(cz);
+        std::uniform_real_distribution<double> U01(0.0, 1.0);
+        HostPoints X(3 * n);
+        const double L[3] = {0.8, 0.6, 0.1 * cz};
+        for (size_t k = 0; k < n; ++k)
+          for (int a = 0; a < 3; ++a) X[a * n + k] = L[a] * U01(rng);
+        const HostPoints F = random_values(3 * n, 5);
+        HostPoints absF(F);
+        for (double& v : absF) v = std::abs(v);
+        const dvec dX(X.begin(), X.end()), dF(F.begin(), F.end()), dA(absF.begin(), absF.end());
+        std::array<dvec, 3> serial, serial_abs, binned;
+        ib.spread(dX, dF, serial, Spreading::serial);
+        ib.spread(dX, dA, serial_abs, Spreading::serial);
+        ib.spread(dX, dF, binned, Spreading::binned);
+        const double vol = ib.cell_volume();
+        double sumF = 0.0;
+        for (double v : absF) sumF += v;
+        for (int c = 0; c < 3; ++c) {
+          const auto s = to_host(serial[c]), b = to_host(binned[c]), a = to_host(serial_abs[c]);
+          for (size_t m = 0; m < s.size(); ++m)
+            ASSERT_NEAR(b[m], s[m], (2.0 * n + 8.0) * eps * a[m] + 48 * eps * sumF / vol)
+                << kernel << (walls ? " walls" : " periodic") << " cz=" << cz << " component " << c << " unknown " << m;
+        }
+      }
+}
+
+}  // namespace
+}  // namespace rbfib::ib
