@@ -54,6 +54,9 @@ std::vector<Spreading> all_spreadings();
 /// Number of shifts processed per sweep by Algs. 4.5 and 4.6 (the seed's sz; it used sz = 8).
 inline constexpr int buffer_width = 8;
 
+/// One kernel and one MAC grid. Calls reuse workspace held by the object (sort keys, the Alg. 4.5
+/// buffer), so one object must not be used by two threads at once; the algorithms themselves
+/// run in parallel on the execution device.
 class Interaction {
  public:
   /// components: the three component boxes (e.g. mac_boxes(...)), sharing cells, lengths, origins
