@@ -83,8 +83,11 @@ def reference(root, name):
         if cid in seen:
             raise HarnessError(f"reference {path}: check id '{cid}' appears twice")
         seen.add(cid)
-    for i, fig in enumerate(ref.get("figures", []) or []):
+    figures = ref.get("figures", []) or []
+    for i, fig in enumerate(figures):
         for field in ("id", "table", "x", "y"):
             if field not in fig:
                 raise HarnessError(f"reference {path}: figures[{i}] lacks the field '{field}'")
+    if not any(f.get("id") == "speed_vs_error" for f in figures):
+        raise HarnessError(f"reference {path}: no figure 'speed_vs_error' (every study reports wall time against error)")
     return ref

@@ -83,8 +83,8 @@ def run_study(meta, args):
     outcome = checks.evaluate(ref, results)
     summary = report.render(meta, ref, results, outcome, os.path.join(args.reports, name), info)
     for c in outcome:
-        print(f"  {'PASS' if c['passed'] else 'FAIL'}  {c['id']}: {c['detail']}")
-    print(f"harness: {name}: {summary['passed']} passed, {summary['failed']} failed; "
+        print(f"  {c['status']:7s} {c['id']}: {c['detail']}")
+    print(f"harness: {name}: {summary['passed']} passed, {summary['failed']} failed, {summary['differs']} known differences; "
           f"report {os.path.join(args.reports, name, 'README.md')}", flush=True)
     return summary
 

@@ -110,23 +110,31 @@ def render(meta, ref, results, outcome, out_dir, run_info):
     os.makedirs(out_dir, exist_ok=True)
     tabs = tables(results)
     prov = results.get("provenance", {})
-    passed = sum(c["passed"] for c in outcome)
-    failed = len(outcome) - passed
+    passed = sum(c["status"] == "PASS" for c in outcome)
+    failed = sum(c["status"] == "FAIL" for c in outcome)
+    differs = sum(c["status"] == "DIFFERS" for c in outcome)
     L = [f"# {ref.get('title', meta['title'])}", ""]
     L.append(f"Study `{meta['name']}` ({meta['chapter']}): reproduces {', '.join(meta['reproduces'])}. "
              f"Source: {ref['source']}.")
     L.append("")
     L.append(meta["description"].strip())
     L.append("")
-    L.append(f"**Scale: {results.get('scale', '?')}.** Checks: **{passed} passed, {failed} failed**.")
+    L.append(f"**Scale: {results.get('scale', '?')}.** Checks: **{passed} passed, {failed} failed**"
+             + (f", {differs} known difference{'s' if differs > 1 else ''} from the paper (see below)." if differs else "."))
     L.append("")
     L.append(f"Ran on {prov.get('cpu', '?')} ({prov.get('threads', '?')} threads of {prov.get('hardware_threads', '?')}), "
              f"backend {prov.get('backend', '?')}, {prov.get('compiler', '?')}, commit {run_info.get('commit', '?')}, "
              f"{run_info.get('date', '?')}; driver wall time {run_info.get('seconds', 0):.1f} s.")
     L.append("")
     L += ["## Checks", "", markdown_table(["check", "source", "result", "detail"],
-                                          [[c["id"], c["source"], "PASS" if c["passed"] else "**FAIL**", c["detail"]]
-                                           for c in outcome]), ""]
+                                          [[c["id"], c["source"], c["status"] if c["passed"] else f"**{c['status']}**",
+                                            c["detail"]] for c in outcome]), ""]
+    known = [c for c in outcome if c["status"] == "DIFFERS"]
+    if known:
+        L += ["### Known differences from the paper", "",
+              "These checks fail as written; the difference is investigated and explained, not tuned away:", ""]
+        L += [f"- **{c['id']}**: {c['known_difference'].strip()}" for c in known]
+        L.append("")
     if ref.get("conventions"):
         L += ["## Conventions and choices", ""]
         for k, v in ref["conventions"].items():
@@ -162,7 +170,7 @@ def render(meta, ref, results, outcome, out_dir, run_info):
     with open(os.path.join(out_dir, "results.json"), "w") as f:
         json.dump(results, f, indent=1)
     summary = {"study": meta["name"], "chapter": meta["chapter"], "title": meta["title"], "scale": results.get("scale"),
-               "passed": passed, "failed": failed, "date": run_info.get("date"), "commit": run_info.get("commit"),
+               "passed": passed, "failed": failed, "differs": differs, "date": run_info.get("date"), "commit": run_info.get("commit"),
                "seconds": run_info.get("seconds")}
     with open(os.path.join(out_dir, "summary.json"), "w") as f:
         json.dump(summary, f, indent=1)
@@ -177,7 +185,9 @@ def render_index(reports_dir):
             with open(p) as f:
                 s = json.load(f)
             rows.append([f"[{s['study']}]({name}/README.md)", s["chapter"], s["title"], s["scale"],
-                         f"{s['passed']} passed, {s['failed']} failed", f"{s.get('seconds') or 0:.0f} s", s.get("date", "")])
+                         f"{s['passed']} passed, {s['failed']} failed"
+                         + (f", {s['differs']} known differences" if s.get("differs") else ""),
+                         f"{s.get('seconds') or 0:.0f} s", s.get("date", "")])
     L = ["# Reports", "", "Rendered by `make reproduce` (quick scale) or `make reproduce-NAME SCALE=full`.", "",
          markdown_table(["study", "chapter", "what", "scale", "checks", "driver time", "date"], rows), ""]
     with open(os.path.join(reports_dir, "README.md"), "w") as f:

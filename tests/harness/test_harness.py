@@ -47,6 +47,14 @@ class Checks(unittest.TestCase):
         self.assertFalse(run_checks(by)[0]["passed"])
         self.assertTrue(run_checks(dict(by, expected=None, tol=None, min=0.9))[0]["passed"])
 
+    def test_known_difference_is_reported_not_hidden(self):
+        c = {"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 2.9, "known_difference": "why"}
+        out = run_checks(c)[0]
+        self.assertFalse(out["passed"])
+        self.assertEqual(out["status"], "DIFFERS")
+        self.assertEqual(run_checks(dict(c, max=3.0))[0]["status"], "PASS")
+        self.assertEqual(run_checks(dict(c, known_difference=None))[0]["status"], "FAIL")
+
     def test_bound_and_missing_data_fail(self):
         self.assertTrue(run_checks({"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 3.0})[0]["passed"])
         self.assertFalse(run_checks({"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 2.9})[0]["passed"])
@@ -94,6 +102,9 @@ class BadInput(unittest.TestCase):
             with open(os.path.join(tmp, "reference", "fake.yaml"), "w") as f:
                 f.write("study: fake\nsource: x\nchecks:\n  - {id: a, kind: guess, source: y}\n")
             self.assert_one_line_error(harness("run", "fake", "--no-run", root=tmp), "kind 'guess'")
+            with open(os.path.join(tmp, "reference", "fake.yaml"), "w") as f:
+                f.write("study: fake\nsource: x\nchecks:\n  - {id: a, kind: bound, source: y, value: v, max: 1}\n")
+            self.assert_one_line_error(harness("run", "fake", "--no-run", root=tmp), "speed_vs_error")
         finally:
             shutil.rmtree(tmp)
 
