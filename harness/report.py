@@ -124,7 +124,8 @@ def render(meta, ref, results, outcome, out_dir, run_info):
     L.append("")
     L.append(f"Ran on {prov.get('cpu', '?')} ({prov.get('threads', '?')} threads of {prov.get('hardware_threads', '?')}), "
              f"backend {prov.get('backend', '?')}, {prov.get('compiler', '?')}, commit {run_info.get('commit', '?')}, "
-             f"{run_info.get('date', '?')}; driver wall time {run_info.get('seconds', 0):.1f} s.")
+             f"{run_info.get('date', '?')}; OMP_WAIT_POLICY={run_info.get('omp_wait_policy', 'unset')}; "
+             f"driver wall time {run_info.get('seconds', 0):.1f} s.")
     L.append("")
     L += ["## Checks", "", markdown_table(["check", "source", "result", "detail"],
                                           [[c["id"], c["source"], c["status"] if c["passed"] else f"**{c['status']}**",
