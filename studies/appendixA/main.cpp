@@ -91,13 +91,7 @@ TableRun run_table_problem(int N, bool dirichlet, Correction corr, double dt, in
   return run;
 }
 
-Json table_json(const std::vector<std::string>& columns, const std::vector<std::string>& units) {
-  Json t = Json::object();
-  t["columns"] = columns;
-  t["units"] = units;
-  t["rows"] = Json::array();
-  return t;
-}
+using rbfib::study::table;
 
 // ---- 3. Quadratic exactness in 2D/3D for every staggering and boundary type ---------------------
 struct Quadratic {
@@ -268,7 +262,7 @@ int run(int argc, char** argv) {
   for (int dirichlet = 1; dirichlet >= 0; --dirichlet)
     for (Correction corr : {Correction::none, Correction::appendix_a}) {
       const std::string id = std::string(dirichlet ? "tableA1" : "tableA2") + (corr == Correction::none ? "" : "_corrected");
-      Json t = table_json({"N", "h", "dt_ms", "err2", "err_inf", "err2_rel", "err_inf_rel", "cg_iterations", "seconds"},
+      Json t = table({"N", "h", "dt_ms", "err2", "err_inf", "err2_rel", "err_inf_rel", "cg_iterations", "seconds"},
                           {"", "", "ms", "1e-6", "1e-6", "", "", "", "s"});
       for (int N : Ns) {
         const double dt = 0.1 / N;
@@ -297,7 +291,7 @@ int run(int argc, char** argv) {
         cols.push_back("t_" + std::to_string(s) + "ms");
         units.push_back("");
       }
-      Json t = table_json(cols, units);
+      Json t = table(cols, units);
       for (int i = 0; i < box.n(0); ++i) {
         Json::Array row{box.x(0, i)};
         for (auto& p : prof) row.push_back(p[i]);
@@ -310,7 +304,7 @@ int run(int argc, char** argv) {
 
   // 4. Quadratics in 2D and 3D at every staggering and boundary type (eqs. A.16, A.22).
   {
-    Json t = table_json({"dims", "g_x", "g_y", "bc_x", "bc_y", "corrected", "operator_error", "steady_error", "cg_iterations"},
+    Json t = table({"dims", "g_x", "g_y", "bc_x", "bc_y", "corrected", "operator_error", "steady_error", "cg_iterations"},
                         {"", "", "", "", "", "", "", "", ""});
     int cases = 0;
     for (int dims : {2, 3})
@@ -343,7 +337,7 @@ int run(int argc, char** argv) {
 
   // 5. 3D manufactured solution: convergence and speed versus error, with and without correction.
   {
-    Json t = table_json({"scene", "corrected", "N", "h", "err_inf", "err_l2", "cg_iterations", "seconds"},
+    Json t = table({"scene", "corrected", "N", "h", "err_inf", "err_l2", "cg_iterations", "seconds"},
                         {"", "", "", "", "", "", "", "s"});
     std::vector<int> sizes = {8, 16, 32};
     if (full) sizes.push_back(64);

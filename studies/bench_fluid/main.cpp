@@ -34,13 +34,7 @@ namespace {
 
 Json row(std::initializer_list<Json> values) { return Json(Json::Array(values)); }
 
-Json table(const std::vector<std::string>& columns, const std::vector<std::string>& units) {
-  Json t = Json::object();
-  t["columns"] = Json(columns);
-  t["units"] = Json(units);
-  t["rows"] = Json::array();
-  return t;
-}
+using rbfib::study::table;
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

@@ -82,13 +82,7 @@ double load_average() {
   return l;
 }
 
-Json table(std::vector<std::string> columns, std::vector<std::string> units) {
-  Json t = Json::object();
-  t["columns"] = Json(columns);
-  t["units"] = Json(units);
-  t["rows"] = Json::array();
-  return t;
-}
+using rbfib::study::table;
 
 }  // namespace
 

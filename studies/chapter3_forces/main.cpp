@@ -49,13 +49,7 @@ constexpr double pi = 3.14159265358979323846;
 
 Json::Array row(std::initializer_list<Json> xs) { return Json::Array(xs); }
 
-Json table(const std::vector<std::string>& columns, const std::vector<std::string>& units) {
-  Json t = Json::object();
-  t["columns"] = Json(columns);
-  t["units"] = Json(units);
-  t["rows"] = Json::array();
-  return t;
-}
+using rbfib::study::table;
 
 struct ErrorNorms {
   double abs = 0;  ///< max_i ||F^_i - F^_E,i||_inf (eqs. 90-91)

@@ -140,13 +140,7 @@ double max_abs(const host_vector<double>& v) {
   return m;
 }
 
-Json table(std::vector<std::string> columns, std::vector<std::string> units) {
-  Json t = Json::object();
-  t["columns"] = Json(columns);
-  t["units"] = Json(units);
-  t["rows"] = Json::array();
-  return t;
-}
+using rbfib::study::table;
 
 }  // namespace
 

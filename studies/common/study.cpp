@@ -58,6 +58,14 @@ static std::string cpu_model() {
   return "unknown";
 }
 
+Json table(const std::vector<std::string>& columns, const std::vector<std::string>& units) {
+  Json t = Json::object();
+  t["columns"] = Json(columns);
+  t["units"] = Json(units);
+  t["rows"] = Json::array();
+  return t;
+}
+
 Json make_results(const Options& opt) {
   Json r = Json::object();
   r["study"] = opt.name;

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace rbfib::study {
 
@@ -22,6 +23,9 @@ struct Options {
 Options parse_command_line(int argc, char** argv, const std::string& name, const std::string& description);
 
 const char* to_string(Scale s);
+
+/// An empty results table {"columns": ..., "units": ..., "rows": []} (format: harness/FORMAT.md).
+Json table(const std::vector<std::string>& columns, const std::vector<std::string>& units);
 
 /// A results document pre-filled with the study name, scale and provenance.
 Json make_results(const Options& opt);

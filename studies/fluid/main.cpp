@@ -37,13 +37,7 @@ const char* short_name(TimeIntegrator i) { return i == TimeIntegrator::backward_
 
 Json row(std::initializer_list<Json> values) { return Json(Json::Array(values)); }
 
-Json table(const std::vector<std::string>& columns, const std::vector<std::string>& units) {
-  Json t = Json::object();
-  t["columns"] = Json(columns);
-  t["units"] = Json(units);
-  t["rows"] = Json::array();
-  return t;
-}
+using rbfib::study::table;
 
 struct Spec {
   std::string problem;

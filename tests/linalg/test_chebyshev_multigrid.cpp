@@ -95,7 +95,9 @@ TEST(Multigrid, ProlongationReproducesConstantsAndInteriorLinears) {
   host_vector<double> h = Pl;
   for (index_t p = 0; p < t.fine_size(); ++p) {
     const int j = int(p % 8);
-    if (j > 0 && j < 7) EXPECT_NEAR(h[p], j + 0.5, 1e-14);
+    if (j > 0 && j < 7) {
+      EXPECT_NEAR(h[p], j + 0.5, 1e-14);
+    }
   }
 }
 
