@@ -39,19 +39,10 @@ T* ptr(device_vector<T>& v) { return thrust::raw_pointer_cast(v.data()); }
 template <class T>
 const T* ptr(const device_vector<T>& v) { return thrust::raw_pointer_cast(v.data()); }
 
-/// Below this many indices the CPU build runs a loop on the calling thread: waking an OpenMP team
-/// costs more than the work (1D problems, small faces, coarse multigrid levels).
-inline constexpr index_t serial_below = 2048;
-
-/// Calls kernel(i) for i in [0, n) on the execution device, in parallel.
+/// Calls kernel(i) for i in [0, n) on the execution device, in parallel. One index may stand for
+/// much work (a grid row, a slab of a spreading colour), so n alone says nothing about the cost.
 template <class Kernel>
 void for_each_index(index_t n, Kernel kernel) {
-#if !defined(RBFIB_BACKEND_CUDA)
-  if (n < serial_below) {
-    for (index_t i = 0; i < n; ++i) kernel(i);
-    return;
-  }
-#endif
   thrust::for_each(thrust::counting_iterator<index_t>(0), thrust::counting_iterator<index_t>(n), kernel);
 }
 
