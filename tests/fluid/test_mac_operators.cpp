@@ -1,6 +1,7 @@
 // Unit tests of the MAC-grid operators: divergence = -gradient^T, D G = the Neumann Laplacian of
 // eq. 2.9, exactness of divergence, gradient and the Div.-S2 advection (eq. 2.5) on polynomials next
 // to every boundary type, and the projection leaving a discretely divergence-free field.
+#include "../common/random_field.hpp"
 #include "rbfib/fluid/mac_operators.hpp"
 #include "rbfib/fluid/laplacian.hpp"
 #include "rbfib/fluid/poisson.hpp"
@@ -21,13 +22,7 @@ MacGrid grid3(std::array<MB, 3> bc, std::array<int, 3> cells = {6, 5, 7}) {
   return make_mac_grid(3, cells, {1.2, 0.9, 1.1}, bc);
 }
 
-dvec random_vector(index_t n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> U(-1.0, 1.0);
-  host_vector<double> h(n);
-  for (auto& v : h) v = U(gen);
-  return dvec(h);
-}
+using rbfib::testing::random_vector;
 
 const std::array<MB, 3> kBoundaryCases[] = {
     {MB::periodic, MB::periodic, MB::periodic}, {MB::periodic, MB::dirichlet, MB::periodic},

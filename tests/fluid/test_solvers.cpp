@@ -1,5 +1,6 @@
 // Unit tests of the Helmholtz and Poisson solvers: Gershgorin bounds enclose the spectrum, the
 // V-cycle is symmetric, PCG reaches the tolerance, and failures and bad input are reported by name.
+#include "../common/random_field.hpp"
 #include "rbfib/fluid/helmholtz.hpp"
 #include "rbfib/fluid/poisson.hpp"
 #include "rbfib/grid/mac.hpp"
@@ -14,13 +15,7 @@ namespace {
 
 using MB = MacBoundary;
 
-dvec random_vector(index_t n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> U(-1.0, 1.0);
-  host_vector<double> h(n);
-  for (auto& v : h) v = U(gen);
-  return dvec(h);
-}
+using rbfib::testing::random_vector;
 
 template <class Op>
 Eigen::MatrixXd dense(index_t n, const Op& A) {

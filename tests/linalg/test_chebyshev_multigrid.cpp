@@ -1,5 +1,6 @@
 // Unit tests of Chebyshev iteration (the residual polynomial it must realize exactly) and of the
 // cell-centred multigrid transfers (R = P^T / 2^d, P reproduces constants and linears).
+#include "../common/random_field.hpp"
 #include "rbfib/linalg/chebyshev.hpp"
 #include "rbfib/linalg/multigrid.hpp"
 
@@ -50,13 +51,7 @@ TEST(Chebyshev, RefusesBadBounds) {
   EXPECT_THROW(ChebyshevIteration(ChebyshevBounds{1.0, 2.0}, 0, "smoother"), InputError);
 }
 
-dvec random_vector(index_t n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> U(-1.0, 1.0);
-  host_vector<double> h(n);
-  for (auto& v : h) v = U(gen);
-  return dvec(h);
-}
+using rbfib::testing::random_vector;
 
 CellCentredTransfer transfer(int dims, std::array<int, 3> fine, std::array<bool, 3> periodic) {
   CellCentredTransfer t;
