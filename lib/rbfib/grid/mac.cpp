@@ -41,39 +41,34 @@ BoundaryCondition MacGrid::velocity_condition(int a, int d, int side) const {
   return BoundaryCondition::periodic();
 }
 
-Box MacGrid::component(int a) const {
-  validate();
-  require(a >= 0 && a < dims, "grid.component", a, "must be a velocity component index below dims");
+
+namespace {
+
+// The box of a MAC grid with staggering g_d and end conditions bc(d, side) on each axis.
+template <class Staggering, class Condition>
+Box mac_box(const MacGrid& grid, Staggering g, Condition bc) {
   Box box;
-  box.dims = dims;
-  for (int d = 0; d < dims; ++d) {
-    Axis& ax = box.axes[d];
-    ax.cells = cells[d];
-    ax.length = length[d];
-    ax.origin = origin[d];
-    ax.g = (d == a) ? 1.0 : 0.5;
-    ax.lower = velocity_condition(a, d, 0);
-    ax.upper = velocity_condition(a, d, 1);
-  }
+  box.dims = grid.dims;
+  for (int d = 0; d < grid.dims; ++d)
+    box.axes[d] = Axis{grid.cells[d], grid.length[d], g(d), bc(d, 0), bc(d, 1), grid.origin[d]};
   box.validate();
   return box;
 }
 
+}  // namespace
+
+Box MacGrid::component(int a) const {
+  validate();
+  require(a >= 0 && a < dims, "grid.component", a, "must be a velocity component index below dims");
+  return mac_box(*this, [a](int d) { return d == a ? 1.0 : 0.5; },
+                 [this, a](int d, int side) { return velocity_condition(a, d, side); });
+}
+
 Box MacGrid::scalar() const {
   validate();
-  Box box;
-  box.dims = dims;
-  for (int d = 0; d < dims; ++d) {
-    Axis& ax = box.axes[d];
-    ax.cells = cells[d];
-    ax.length = length[d];
-    ax.origin = origin[d];
-    ax.g = 0.5;
-    ax.lower = periodic(d) ? BoundaryCondition::periodic() : BoundaryCondition::neumann();
-    ax.upper = ax.lower;
-  }
-  box.validate();
-  return box;
+  return mac_box(*this, [](int) { return 0.5; }, [this](int d, int) {
+    return periodic(d) ? BoundaryCondition::periodic() : BoundaryCondition::neumann();
+  });
 }
 
 MacGrid make_mac_grid(int dims, std::array<int, 3> cells, std::array<double, 3> length,
