@@ -17,7 +17,7 @@ DEBS += libthrust-dev libcub-dev
 endif
 NVCC := $(firstword $(wildcard /usr/local/cuda/bin/nvcc) $(shell command -v nvcc 2>/dev/null))
 
-.PHONY: help deps configure build test test-unit check-cuda build-cuda reproduce reproduce-% clean
+.PHONY: help deps configure build test test-unit check-cuda build-cuda reproduce reproduce-% point-sets clean
 
 help:
 	@echo "make reproduce          every implemented study at SCALE=$(SCALE) -> reports/"
@@ -25,6 +25,7 @@ help:
 	@echo "make test               install deps, build, run every test (unit, harness, studies at quick scale)"
 	@echo "make build-cuda         configure and build the CUDA backend (nvcc)"
 	@echo "make deps               install missing Debian packages"
+	@echo "make point-sets         regenerate reference/point_sets (maximal-determinant-like sites; ~1 h on 2 cores)"
 
 deps:
 	@missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
@@ -61,6 +62,13 @@ reproduce: build
 
 reproduce-%: build
 	$(PY) -m harness run $* --scale $(SCALE) --build $(BUILD)
+
+# The stored evaluation sites of the Chapter 3 study: N = 22, 44, 67 (n = 529, 2025, 4624).
+POINT_SET_DEGREES := 22 44 67
+point-sets: build
+	@for N in $(POINT_SET_DEGREES); do \
+	  $(BUILD)/tools/tool_max_determinant_points --degree $$N --out reference/point_sets/max_determinant_N$$N.txt || exit 1; \
+	done
 
 clean:
 	rm -rf $(BUILD) $(BUILD_CUDA) runs

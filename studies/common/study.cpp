@@ -114,4 +114,9 @@ int run_main(const std::string& name, const std::function<int()>& body) {
   }
 }
 
+std::string source_path(const std::string& relative) {
+  const char* root = std::getenv("RBFIB_ROOT");
+  return std::string(root && *root ? root : RBFIB_SOURCE_DIR) + "/" + relative;
+}
+
 }  // namespace rbfib::study

@@ -39,6 +39,10 @@ void log(const Options& opt, const std::string& message);
 /// Median wall time in seconds of `repeats` calls of fn.
 double median_seconds(int repeats, const std::function<void()>& fn);
 
+/// The path of a file in the source tree (stored inputs such as reference/point_sets/...):
+/// $RBFIB_ROOT/relative when that variable is set, else relative to the configured source tree.
+std::string source_path(const std::string& relative);
+
 /// Runs body, turning any exception into one line on stderr and exit status 1.
 int run_main(const std::string& name, const std::function<int()>& body);
 

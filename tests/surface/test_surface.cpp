@@ -12,7 +12,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
 
 using namespace rbfib;
 using namespace rbfib::surface;
@@ -151,6 +153,74 @@ TEST(PointSets, MaxDeterminantIncreasesTheDeterminantAndGivesPositiveExactWeight
     sum += w;
   }
   EXPECT_NEAR(sum, 4 * pi, 1e-12);
+}
+
+TEST(PointSets, MaxDeterminantConvergesToAStationaryPoint) {
+  // At a local maximum of log|det Y| the gradient vanishes: L-BFGS must end far below its start.
+  const MaxDetResult r = max_determinant_points(10);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LT(r.gradient_norm, 1e-3);
+  // The stored sets (reference/point_sets) are written by the same generator; its weights solve
+  // eq. (45) exactly and directly (square system, no active-set steps).
+  const NnlsWeights q = nnls_sh_weights(r.sites, 10);
+  EXPECT_EQ(q.iterations, 0);
+  EXPECT_LT(q.residual, 1e-12);
+}
+
+TEST(Quadrature, SquareNnlsDirectSolveAgreesWithActiveSet) {
+  // Same square system through the active-set path (one extra site makes it non-square) and the
+  // direct path: on a set with a positive exact solution both give that solution.
+  const MaxDetResult r = max_determinant_points(4);
+  const NnlsWeights direct = nnls_sh_weights(r.sites, 4);
+  SphereSites plus = r.sites;
+  plus.lambda.push_back(0.123);
+  plus.theta.push_back(0.456);
+  const NnlsWeights active = nnls_sh_weights(plus, 4);
+  EXPECT_GT(active.iterations, 0);
+  EXPECT_LT(active.residual, 1e-12);
+  double sum = 0;
+  for (double w : direct.w) sum += w;
+  EXPECT_NEAR(sum, 4 * pi, 1e-12);
+  // Both integrate exp(z) to 4 pi sinh(1) within the quadrature error of degree 4 rules.
+  auto integral = [](const SphereSites& s, const std::vector<double>& w) {
+    double I = 0;
+    for (index_t i = 0; i < s.size(); ++i) I += w[i] * std::exp(std::sin(s.theta[i]));
+    return I;
+  };
+  EXPECT_NEAR(integral(r.sites, direct.w), 4 * pi * std::sinh(1.0), 1e-3);
+  EXPECT_NEAR(integral(plus, active.w), 4 * pi * std::sinh(1.0), 1e-3);
+}
+
+TEST(PointSets, SiteFilesRoundTripAndRejectBadLines) {
+  const std::string path = ::testing::TempDir() + "rbfib_sites.txt";
+  const SphereSites s = bauer_spiral(50);
+  write_sphere_sites(path, s, {"a test set"});
+  const SphereSites r = read_sphere_sites(path);
+  ASSERT_EQ(r.size(), s.size());
+  for (index_t i = 0; i < s.size(); ++i) {
+    double a[3], b[3];
+    unit_sphere_point(s.lambda[i], s.theta[i], a);
+    unit_sphere_point(r.lambda[i], r.theta[i], b);
+    for (int d = 0; d < 3; ++d) EXPECT_NEAR(a[d], b[d], 4 * eps);
+  }
+  auto expect_error = [&](const std::string& text, const std::string& needle) {
+    {
+      std::FILE* f = std::fopen(path.c_str(), "w");
+      std::fputs(text.c_str(), f);
+      std::fclose(f);
+    }
+    try {
+      read_sphere_sites(path);
+      ADD_FAILURE() << "no error for: " << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  expect_error("# header\n1 0 0\n0 1\n", "line 3");
+  expect_error("1 0 0\n0 2 0\n", "not a unit vector");
+  expect_error("1 0 0\n1 0 0\n0 0 1\n", "coincide");
+  expect_error("# only a comment\n", "no sites");
+  EXPECT_THROW(read_sphere_sites(path + ".missing"), InputError);
 }
 
 TEST(Interpolation, SphericalHarmonicInterpolantIsExactForTheEllipsoidFromM1) {

@@ -6,6 +6,10 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <deque>
+#include <fstream>
+#include <sstream>
 
 namespace rbfib::surface {
 
@@ -41,87 +45,181 @@ SphereSites toroidal_spiral(index_t N) {
   return s;
 }
 
-MaxDetResult max_determinant_points(int M, int max_iterations) {
+namespace {
+
+/// log|det Y| at the sites x / |x| (3 per site) and its gradient with respect to the
+/// unnormalized x: for site i, (d/dx_i) = (g_lambda / cos theta e_lambda + g_theta e_theta) / |x_i|
+/// with g = d log|det Y| / d(angle) = sum_k dY_ik/d(angle) (Y^{-1})_ki.
+class LogDet {
+ public:
+  explicit LogDet(int M) : M_(M), m_(sh_count(M)), Y_(m_, m_), Yl_(m_, m_), Yt_(m_, m_) {}
+
+  double operator()(const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
+    std::vector<double> lambda(m_), theta(m_), r(m_);
+#pragma omp parallel for
+    for (int i = 0; i < m_; ++i) {
+      r[i] = x.segment<3>(3 * i).norm();
+      theta[i] = std::asin(std::clamp(x[3 * i + 2] / r[i], -1.0, 1.0));
+      lambda[i] = std::atan2(x[3 * i + 1], x[3 * i]);
+      std::vector<double> y(m_), yl(m_), yt(m_);
+      real_harmonics(M_, lambda[i], theta[i], y.data(), yl.data(), yt.data());
+      for (int j = 0; j < m_; ++j) {
+        Y_(i, j) = y[j];
+        Yl_(i, j) = yl[j];
+        Yt_(i, j) = yt[j];
+      }
+    }
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Y_);
+    double value = 0;
+    for (int i = 0; i < m_; ++i) value += std::log(std::abs(lu.matrixLU()(i, i)));
+    grad.resize(3 * m_);
+    if (!std::isfinite(value)) return value;
+    const Eigen::MatrixXd Yinv = lu.inverse();
+#pragma omp parallel for
+    for (int i = 0; i < m_; ++i) {
+      const double gl = Yl_.row(i).dot(Yinv.col(i)), gt = Yt_.row(i).dot(Yinv.col(i));
+      const double la = lambda[i], th = theta[i];
+      const double c = std::max(std::cos(th), 1e-12);
+      const double el[3] = {-std::sin(la), std::cos(la), 0.0};
+      const double et[3] = {-std::cos(la) * std::sin(th), -std::sin(la) * std::sin(th), std::cos(th)};
+      for (int d = 0; d < 3; ++d) grad[3 * i + d] = (gl / c * el[d] + gt * et[d]) / r[i];
+    }
+    return value;
+  }
+
+ private:
+  int M_, m_;
+  Eigen::MatrixXd Y_, Yl_, Yt_;
+};
+
+SphereSites sites_from_points(const Eigen::VectorXd& x) {
+  SphereSites s;
+  const index_t m = x.size() / 3;
+  s.lambda.resize(m);
+  s.theta.resize(m);
+  for (index_t i = 0; i < m; ++i) {
+    const double r = x.segment<3>(3 * i).norm();
+    s.theta[i] = std::asin(std::clamp(x[3 * i + 2] / r, -1.0, 1.0));
+    s.lambda[i] = std::atan2(x[3 * i + 1], x[3 * i]);
+  }
+  return s;
+}
+
+}  // namespace
+
+MaxDetResult max_determinant_points(int M, int max_iterations, const std::function<void(int, double)>& progress,
+                                    int report_every) {
   require(M >= 0, "harmonic degree M", M, "must be >= 0");
+  require(max_iterations >= 0, "max_iterations", max_iterations, "must be >= 0");
   const int m = sh_count(M);
   // Small dense matrices: threading them only costs (and contends with the caller's threads).
   const int threads = Eigen::nbThreads();
-  Eigen::setNbThreads(1);
+  if (m < 1000) Eigen::setNbThreads(1);
+  const std::vector<double> start = unit_sphere_points(bauer_spiral(m));
+  Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(start.data(), 3 * m);
+  LogDet log_det(M);
+  // Minimize f = -log|det Y| by L-BFGS (memory 10) with a backtracking line search: Armijo once
+  // curvature pairs exist; plain decrease on the first step, where the spiral's nearly singular Y
+  // makes the gradient's predicted decrease meaningless. A step moves no site by more than 0.3 h.
+  Eigen::VectorXd g;
+  double f = -log_det(x, g);
+  g = -g;
   MaxDetResult r;
-  r.sites = bauer_spiral(m);
-  std::vector<double> row(m), rl(m), rt(m);
-  Eigen::MatrixXd Y(m, m), Yl(m, m), Yt(m, m);
-  auto assemble = [&](const SphereSites& s, bool derivs) {
-    for (int i = 0; i < m; ++i) {
-      real_harmonics(M, s.lambda[i], s.theta[i], row.data(), derivs ? rl.data() : nullptr,
-                     derivs ? rt.data() : nullptr);
-      for (int j = 0; j < m; ++j) {
-        Y(i, j) = row[j];
-        if (derivs) { Yl(i, j) = rl[j]; Yt(i, j) = rt[j]; }
-      }
-    }
-  };
-  auto log_abs_det = [&](const Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {
-    double v = 0;
-    for (int i = 0; i < m; ++i) v += std::log(std::abs(lu.matrixLU()(i, i)));
-    return v;
-  };
-  assemble(r.sites, true);
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu(Y);
-  double f = log_abs_det(lu);
-  r.log_det_start = f;
+  r.log_det_start = -f;
+  require(std::isfinite(f), "Bauer spiral start for M", M, "gives a singular interpolation matrix");
   const double h = std::sqrt(4 * pi / m);  // typical spacing
-  double step = 0.05 * h;
-  int it = 0;
-  for (; it < max_iterations && step > 1e-6 * h; ++it) {
-    // d log|det Y| / d p_i = sum_k dY_ik/dp_i (Y^{-1})_ki.
-    const Eigen::MatrixXd Yinv = lu.inverse();
-    std::vector<double> d3(3 * m);
-    double gmax = 0;
-    for (int i = 0; i < m; ++i) {
-      const double gl = Yl.row(i).dot(Yinv.col(i)), gt = Yt.row(i).dot(Yinv.col(i));
-      const double la = r.sites.lambda[i], th = r.sites.theta[i];
-      const double c = std::max(std::cos(th), 1e-12);
-      // gradient on S^2 = (g_lambda / cos theta) e_lambda + g_theta e_theta
-      const double el[3] = {-std::sin(la), std::cos(la), 0.0};
-      const double et[3] = {-std::cos(la) * std::sin(th), -std::sin(la) * std::sin(th), std::cos(th)};
-      for (int d = 0; d < 3; ++d) d3[3 * i + d] = gl / c * el[d] + gt * et[d];
-      gmax = std::max(gmax, std::sqrt(d3[3 * i] * d3[3 * i] + d3[3 * i + 1] * d3[3 * i + 1] + d3[3 * i + 2] * d3[3 * i + 2]));
+  std::deque<Eigen::VectorXd> S, G;
+  int small_gains = 0, it = 0;
+  for (; it < max_iterations && small_gains < 5; ++it) {
+    Eigen::VectorXd q = g;
+    std::vector<double> alpha(S.size());
+    for (int k = int(S.size()) - 1; k >= 0; --k) {
+      alpha[k] = S[k].dot(q) / G[k].dot(S[k]);
+      q -= alpha[k] * G[k];
     }
-    if (!(gmax > 0)) break;
+    const double gamma =
+        S.empty() ? 0.05 * h / g.cwiseAbs().maxCoeff() : S.back().dot(G.back()) / G.back().dot(G.back());
+    Eigen::VectorXd d = -gamma * q;
+    for (std::size_t k = 0; k < S.size(); ++k) d -= S[k] * (alpha[k] + G[k].dot(d) / G[k].dot(S[k]));
+    if (!(d.dot(g) < 0)) {  // not a descent direction: restart from steepest descent
+      S.clear();
+      G.clear();
+      d = -0.05 * h / g.cwiseAbs().maxCoeff() * g;
+    }
+    double dmax = 0;
+    for (int i = 0; i < m; ++i) dmax = std::max(dmax, d.segment<3>(3 * i).norm());
+    double t = std::min(1.0, 0.3 * h / dmax);
+    Eigen::VectorXd xn, gn;
+    double fn = 0;
     bool accepted = false;
-    while (!accepted && step > 1e-6 * h) {
-      SphereSites trial = r.sites;
-      for (int i = 0; i < m; ++i) {
-        double p[3];
-        unit_sphere_point(r.sites.lambda[i], r.sites.theta[i], p);
-        for (int d = 0; d < 3; ++d) p[d] += step / gmax * d3[3 * i + d];
-        const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-        trial.theta[i] = std::asin(std::clamp(p[2] / n, -1.0, 1.0));
-        trial.lambda[i] = std::atan2(p[1], p[0]);
-      }
-      assemble(trial, true);
-      Eigen::PartialPivLU<Eigen::MatrixXd> lu2(Y);
-      const double f2 = log_abs_det(lu2);
-      if (std::isfinite(f2) && f2 > f) {
-        r.sites = trial;
-        lu = lu2;
-        f = f2;
-        step *= 1.2;
-        accepted = true;
-      } else {
-        step *= 0.5;
+    for (int ls = 0; ls < 40 && !accepted; ++ls, t *= 0.5) {
+      xn = x + t * d;
+      for (int i = 0; i < m; ++i) xn.segment<3>(3 * i).normalize();
+      fn = -log_det(xn, gn);
+      accepted = std::isfinite(fn) && fn < f && (S.empty() || fn <= f + 1e-4 * t * g.dot(d));
+    }
+    if (!accepted) break;  // no decrease along the direction: a local maximum to rounding
+    gn = -gn;
+    const Eigen::VectorXd s = xn - x, y = gn - g;
+    if (s.dot(y) > 1e-12 * s.norm() * y.norm()) {
+      S.push_back(s);
+      G.push_back(y);
+      if (S.size() > 10) {
+        S.pop_front();
+        G.pop_front();
       }
     }
-    if (!accepted) {
-      assemble(r.sites, true);
-      break;
-    }
+    small_gains = (f - fn) < 1e-10 * std::abs(f) ? small_gains + 1 : 0;
+    x = xn;
+    g = gn;
+    f = fn;
+    if (progress && report_every > 0 && it % report_every == 0) progress(it, -f);
   }
-  r.log_det = f;
+  r.sites = sites_from_points(x);
+  r.log_det = -f;
+  r.gradient_norm = g.norm();
   r.iterations = it;
+  r.converged = small_gains >= 5;
   Eigen::setNbThreads(threads);
   return r;
+}
+
+SphereSites read_sphere_sites(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("site file", path, "cannot be opened");
+  SphereSites s;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream fields(line);
+    double p[3];
+    std::string rest;
+    if (!(fields >> p[0] >> p[1] >> p[2]) || (fields >> rest))
+      throw InputError(path + " line " + to_text(number), line, "must hold three numbers x y z");
+    const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    if (!(std::abs(n - 1) <= 1e-9))
+      throw InputError(path + " line " + to_text(number), line, "is not a unit vector (length " + to_text(n) + ")");
+    s.theta.push_back(std::asin(std::clamp(p[2] / n, -1.0, 1.0)));
+    s.lambda.push_back(std::atan2(p[1], p[0]));
+  }
+  if (s.size() == 0) throw InputError("site file", path, "holds no sites");
+  require_distinct(s, path.c_str());
+  return s;
+}
+
+void write_sphere_sites(const std::string& path, const SphereSites& sites, const std::vector<std::string>& header) {
+  std::ofstream out(path);
+  if (!out) throw InputError("site file", path, "cannot be written");
+  for (const std::string& h : header) out << "# " << h << '\n';
+  char buf[96];
+  for (index_t i = 0; i < sites.size(); ++i) {
+    double p[3];
+    unit_sphere_point(sites.lambda[i], sites.theta[i], p);
+    std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g\n", p[0], p[1], p[2]);
+    out << buf;
+  }
+  if (!out) throw InputError("site file", path, "write failed");
 }
 
 void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {

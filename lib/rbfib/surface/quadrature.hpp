@@ -4,7 +4,8 @@
 // - rbf_sphere_weights (dissertation eq. 2.22): [Phi 1; 1^T 0][w; I_phi] = [0; 4 pi] with
 //   Phi_ij = |chi_i - chi_j|^p; -I_phi approximates the (constant) integral of phi over S^2.
 // - nnls_sh_weights (paper eq. 45): the nonnegative least-squares solution of
-//   Y^T w = sqrt(4 pi) e_1 for the harmonics of degree <= N (Lawson-Hanson active set).
+//   Y^T w = sqrt(4 pi) e_1 for the harmonics of degree <= N (Lawson-Hanson active set; for a
+//   square system with a nonnegative exact solution, that solution by one LU solve).
 // - reference_shape_weights (paper eq. 51): w_L = sqrt(det G0(Z_L) / det G0(Z_S2)) w_S2.
 #include "rbfib/surface/sphere.hpp"
 
@@ -23,7 +24,7 @@ RbfWeights rbf_sphere_weights(const SphereSites& sites, int power = 1);
 struct NnlsWeights {
   std::vector<double> w;
   double residual = 0;  ///< || Y^T w - sqrt(4 pi) e_1 ||_2
-  int iterations = 0;
+  int iterations = 0;  ///< active-set steps (0: square system solved directly)
 };
 NnlsWeights nnls_sh_weights(const SphereSites& sites, int N);
 
