@@ -223,10 +223,10 @@ TEST(Bending, SphereIsInEquilibriumWithAndWithoutSpontaneousCurvature) {
   ShCell cell;
   const std::vector<double> X = ellipsoid(2, 2, 2).points(cell.interp);
   for (double H0 : {0.0, -0.5}) {
-    const auto F = bending_force_density("sphere", *cell.at_data, *cell.ops, X, cell.Z, BendingModel{1.0, H0});
+    const auto F = bending_force_density("sphere", *cell.at_data, *cell.ops, X, cell.Z, BendingModel{1.0, H0, {}});
     EXPECT_LT(max_abs(F), 1e-11) << H0;
   }
-  const auto F = bending_force_density("sphere", *cell.at_data, *cell.ops, X, cell.Z, BendingModel{1.0, -1.0});
+  const auto F = bending_force_density("sphere", *cell.at_data, *cell.ops, X, cell.Z, BendingModel{1.0, -1.0, {}});
   EXPECT_GT(max_abs(F), 0.1);  // H' != H: a nonzero normal force
 }
 
@@ -239,7 +239,7 @@ TEST(Bending, IsMinusTheDerivativeOfTheBendingEnergy) {
   const PerturbedEllipsoid shape{1.01, 1.0, 0.99, 0.01, 1.0};
   const std::vector<double> X0 = shape.points(cell.interp);
   for (double H0 : {0.0, -0.7}) {
-    const BendingModel m{1.0, H0};
+    const BendingModel m{1.0, H0, {}};
     auto energy = [&](const std::vector<double>& X) {
       return bending_energy("fd", jets_from_operators(*cell.ops, X), cell.Z, m, cell.w);
     };
@@ -252,6 +252,46 @@ TEST(Bending, IsMinusTheDerivativeOfTheBendingEnergy) {
     for (std::size_t i = 0; i < g.size(); i += 3) err = std::max(err, std::abs(p[i] + g[i]));
     EXPECT_LT(err, 0.05 * scale) << "H' = " << H0;
   }
+}
+
+TEST(Bending, PerSiteSpontaneousCurvatureIsMinusTheDerivativeOfItsEnergy) {
+  // H' a material field (a platelet prefers its reference curvature): the force gains lap_s H'
+  // and a tangential term 2 (H - H') grad_s H'. Same shape and tolerance as the constant-H' test;
+  // the tangential term alone is checked to matter, so dropping it would fail.
+  ShCell cell;
+  const PerturbedEllipsoid shape{1.01, 1.0, 0.99, 0.01, 1.0};
+  const std::vector<double> X0 = shape.points(cell.interp);
+  BendingModel m{1.0, 0.0, {}};
+  for (index_t i = 0; i < cell.interp.size(); ++i)
+    m.H0_data.push_back(-0.7 + 0.4 * std::sin(cell.interp.theta[i]) +
+                        0.3 * std::cos(cell.interp.lambda[i]) * std::cos(cell.interp.theta[i]));
+  auto energy = [&](const std::vector<double>& X) {
+    return bending_energy("fd", jets_from_operators(*cell.ops, X), cell.Z, m, cell.w, cell.ops.get());
+  };
+  const std::vector<double> g = fd_gradient(energy, X0, 1e-6, 1);
+  const std::vector<double> F = bending_force_density("fd", *cell.at_data, *cell.ops, X0, cell.Z, m);
+  const std::vector<double> p = cell.project(forces_from_density(F, cell.w));
+  const double scale = max_abs(g);
+  ASSERT_GT(scale, 1e-3);
+  double err = 0;
+  for (std::size_t i = 0; i < g.size(); ++i) err = std::max(err, std::abs(p[i] + g[i]));
+  EXPECT_LT(err, 0.05 * scale);
+  // Without the tangential term the mismatch is O(1).
+  std::vector<double> Fn = F;
+  const std::vector<Jet> Xs = jets_from_operators(*cell.ops, X0);
+  for (std::size_t i = 0; i < Xs.size(); ++i) {
+    const PointGeometry gi = point_geometry(Xs[i]);
+    const double fn = Fn[3 * i] * gi.n[0] + Fn[3 * i + 1] * gi.n[1] + Fn[3 * i + 2] * gi.n[2];
+    for (int d = 0; d < 3; ++d) Fn[3 * i + d] = fn * gi.n[d];
+  }
+  const std::vector<double> pn = cell.project(forces_from_density(Fn, cell.w));
+  double err_normal_only = 0;
+  for (std::size_t i = 0; i < g.size(); ++i) err_normal_only = std::max(err_normal_only, std::abs(pn[i] + g[i]));
+  EXPECT_GT(err_normal_only, 0.2 * scale);
+  // Wrong length of the per-site field: a named input error.
+  BendingModel bad = m;
+  bad.H0_data.pop_back();
+  EXPECT_THROW(bending_force_density("bad", *cell.at_data, *cell.ops, X0, cell.Z, bad), InputError);
 }
 
 TEST(Ldsm, ForceIsMinusTheDerivativeOfTheTriangulatedEnergy) {

@@ -62,16 +62,33 @@ std::vector<double> forces_from_density(const std::vector<double>& density, cons
   return F;
 }
 
+namespace {
+/// H' at the sample sites as scalar jets (constant model.H0, or model.H0_data reconstructed).
+std::vector<surface::ScalarJet> spontaneous_curvature(const std::string& cell, const surface::SurfaceOperators& to_sample,
+                                                      const BendingModel& model) {
+  if (model.H0_data.empty())
+    return std::vector<surface::ScalarJet>(to_sample.n_sample(), surface::ScalarJet{model.H0, 0, 0, 0, 0, 0});
+  require(static_cast<index_t>(model.H0_data.size()) == to_sample.n_data(),
+          "cell '" + cell + "': spontaneous curvature per data site, H0_data.size()", model.H0_data.size(),
+          "must equal the number of data sites " + to_text(to_sample.n_data()));
+  for (std::size_t i = 0; i < model.H0_data.size(); ++i)
+    require(std::isfinite(model.H0_data[i]), "cell '" + cell + "': H0_data[" + to_text(i) + "] (1/cm)",
+            model.H0_data[i], "must be finite");
+  return surface::scalar_jets_from_operators(to_sample, model.H0_data);
+}
+}  // namespace
+
 std::vector<double> bending_force_density(const std::string& cell, const surface::SurfaceOperators& at_data,
                                           const surface::SurfaceOperators& to_sample,
                                           const std::vector<double>& X_data, const std::vector<Jet>& Z,
                                           const BendingModel& model) {
   require(model.kappa >= 0, "bending modulus kappa (erg)", model.kappa, "must be >= 0");
   require_same(cell, Z.size(), static_cast<std::size_t>(to_sample.n_sample()), "reference jets");
+  const std::vector<surface::ScalarJet> H0s = spontaneous_curvature(cell, to_sample, model);
   const std::vector<Jet> Xd = surface::jets_from_operators(at_data, X_data);
   const std::vector<surface::PointGeometry> gd = surface::surface_geometry(Xd, cell);
-  std::vector<double> H(gd.size());
-  for (std::size_t i = 0; i < gd.size(); ++i) H[i] = gd[i].H;
+  std::vector<double> H(gd.size());  // H - H' at the data sites (H' = 0 here when constant)
+  for (std::size_t i = 0; i < gd.size(); ++i) H[i] = gd[i].H - (model.H0_data.empty() ? 0.0 : model.H0_data[i]);
   const std::vector<Jet> Xs = surface::jets_from_operators(to_sample, X_data);
   const std::vector<surface::PointGeometry> gs = surface::surface_geometry(Xs, cell);
   const std::vector<surface::ScalarJet> Hs = surface::scalar_jets_from_operators(to_sample, H);
@@ -80,8 +97,14 @@ std::vector<double> bending_force_density(const std::string& cell, const surface
     const surface::PointGeometry g0 = surface::point_geometry(Z[i]);
     if (!(g0.det_g > 0))
       throw NumericalError("cell '" + cell + "': reference metric degenerate at sample site " + to_text(i));
-    const double lap = surface::laplace_beltrami(Xs[i], Hs[i]);
-    bending_force_density(gs[i], g0.det_g, lap, model.kappa, model.H0, &F[3 * i]);
+    const double lap = surface::laplace_beltrami(Xs[i], Hs[i]);  // lap_s (H - H')
+    bending_force_density(gs[i], g0.det_g, lap, model.kappa, H0s[i].u, &F[3 * i]);
+    if (!model.H0_data.empty()) {  // tangential term of a material field H'
+      double grad[3];
+      surface::surface_gradient(Xs[i], H0s[i], grad);
+      const double c = -4 * model.kappa * std::sqrt(gs[i].det_g / g0.det_g) * (gs[i].H - H0s[i].u);
+      for (int d = 0; d < 3; ++d) F[3 * i + d] += c * grad[d];
+    }
     for (int d = 0; d < 3; ++d)
       if (!std::isfinite(F[3 * i + d]))
         throw NumericalError("cell '" + cell + "': non-finite bending force density at sample site " + to_text(i));
@@ -90,14 +113,22 @@ std::vector<double> bending_force_density(const std::string& cell, const surface
 }
 
 double bending_energy(const std::string& cell, const std::vector<Jet>& X, const std::vector<Jet>& Z,
-                      const BendingModel& model, const std::vector<double>& dA0) {
+                      const BendingModel& model, const std::vector<double>& dA0,
+                      const surface::SurfaceOperators* to_sample) {
   require_same(cell, X.size(), Z.size(), "reference jets");
   require_same(cell, dA0.size(), X.size(), "weights");
+  if (!model.H0_data.empty() && !to_sample)
+    throw InputError("cell '" + cell + "': bending_energy to_sample", "nullptr",
+                     "is needed to reconstruct the per-site spontaneous curvature H0_data");
+  const std::vector<surface::ScalarJet> H0s =
+      model.H0_data.empty() ? std::vector<surface::ScalarJet>(X.size(), surface::ScalarJet{model.H0, 0, 0, 0, 0, 0})
+                            : spontaneous_curvature(cell, *to_sample, model);
+  require_same(cell, H0s.size(), X.size(), "spontaneous curvature sites");
   const std::vector<surface::PointGeometry> g = surface::surface_geometry(X, cell);
   double E = 0;
   for (std::size_t i = 0; i < X.size(); ++i) {
     const surface::PointGeometry g0 = surface::point_geometry(Z[i]);
-    const double dh = g[i].H - model.H0;
+    const double dh = g[i].H - H0s[i].u;
     E += 2 * model.kappa * dh * dh * std::sqrt(g[i].det_g / g0.det_g) * dA0[i];
   }
   return E;

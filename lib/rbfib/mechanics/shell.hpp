@@ -36,19 +36,29 @@ std::vector<double> forces_from_density(const std::vector<double>& density, cons
 struct BendingModel {
   double kappa = 0;   ///< bending modulus (erg), dissertation eq. 2.13
   double H0 = 0;      ///< spontaneous curvature H' (1/cm), a constant
+  /// Optional H' per data site (1/cm), a material field (the platelet's "preference for its
+  /// reference curvature", dissertation Sec. 2.2: H' = H of the reference shape). When given it
+  /// replaces H0 and the force gains the terms of a varying H' (see bending_force_density).
+  std::vector<double> H0_data;
 };
 
 /// Bending force density (eq. 84 / 2.13) at the sample sites. H is computed at the data sites
 /// with `at_data` (data -> data operators), reconstructed with `to_sample`, and its surface
-/// Laplacian (eq. 82) taken there. Z: reference jets at the sample sites.
+/// Laplacian (eq. 82) taken there. Z: reference jets at the sample sites. With a material field
+/// H'(s) (model.H0_data) the variational derivative of int 2 kappa (H - H')^2 dA is
+///   F = -2 kappa sqrt(det G / det G0) [ (lap_s (H - H') + 2 (H - H')(H^2 + H' H - K)) n
+///                                       + 2 (H - H') grad_s H' ],
+/// the tangential term because moving material along the surface carries H' with it.
 std::vector<double> bending_force_density(const std::string& cell, const surface::SurfaceOperators& at_data,
                                           const surface::SurfaceOperators& to_sample,
                                           const std::vector<double>& X_data, const std::vector<Jet>& Z,
                                           const BendingModel& model);
 
-/// sum_i 2 kappa (H_i - H')^2 sqrt(det G/det G0)_i dA0_i at the sample sites.
+/// sum_i 2 kappa (H_i - H'_i)^2 sqrt(det G/det G0)_i dA0_i at the sample sites; with
+/// model.H0_data, H'_i is reconstructed from the data sites with `to_sample` (pass nullptr otherwise).
 double bending_energy(const std::string& cell, const std::vector<Jet>& X, const std::vector<Jet>& Z,
-                      const BendingModel& model, const std::vector<double>& dA0);
+                      const BendingModel& model, const std::vector<double>& dA0,
+                      const surface::SurfaceOperators* to_sample = nullptr);
 
 /// Viscous membrane force density (dissertation eq. 2.14, see force_kernels.hpp) from position
 /// jets X and velocity jets U at the sample sites; nu in dyn s/cm.

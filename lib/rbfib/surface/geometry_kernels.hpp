@@ -75,4 +75,12 @@ RBFIB_HD inline double laplace_beltrami(const Jet& j, const ScalarJet& u) {
   return lap;
 }
 
+/// Surface gradient of u: g^{ab} u_b X_a (a tangent vector), written to grad[0..2].
+RBFIB_HD inline void surface_gradient(const Jet& j, const ScalarJet& u, double* grad) {
+  const double E = dot3(j.xl, j.xl), F = dot3(j.xl, j.xt), G = dot3(j.xt, j.xt);
+  const double det = E * G - F * F;
+  const double cl = (G * u.ul - F * u.ut) / det, ct = (E * u.ut - F * u.ul) / det;
+  for (int d = 0; d < 3; ++d) grad[d] = cl * j.xl[d] + ct * j.xt[d];
+}
+
 }  // namespace rbfib::surface
