@@ -69,18 +69,31 @@ RBFIB_HD inline void metric_and_derivatives(const Jet& X, double G[2][2], double
     }
 }
 
+/// Current (X) and reference (Z) metrics with their derivatives and determinants.
+struct MetricPair {
+  double G[2][2], dG[2][2][2], G0[2][2], dG0[2][2][2];
+  double det, det0;
+};
+/// Fills m; false when either metric is degenerate (det <= 0 or not finite).
+RBFIB_HD inline bool metric_pair(const Jet& X, const Jet& Z, MetricPair& m) {
+  metric_and_derivatives(X, m.G, m.dG);
+  metric_and_derivatives(Z, m.G0, m.dG0);
+  m.det = m.G[0][0] * m.G[1][1] - m.G[0][1] * m.G[1][0];
+  m.det0 = m.G0[0][0] * m.G0[1][1] - m.G0[0][1] * m.G0[1][0];
+  return m.det > 0 && m.det0 > 0;
+}
+
 /// Elastic force density (eq. 35) at one site, current jet X, reference jet Z.
 RBFIB_HD inline ForceAtSite elastic_force_density(const Jet& X, const Jet& Z, const EnergyDensity& energy) {
   ForceAtSite r{{0, 0, 0}, 0, 0, 0, force_ok};
-  double G[2][2], dG[2][2][2], G0[2][2], dG0[2][2][2];
-  metric_and_derivatives(X, G, dG);
-  metric_and_derivatives(Z, G0, dG0);
-  const double det = G[0][0] * G[1][1] - G[0][1] * G[1][0];
-  const double det0 = G0[0][0] * G0[1][1] - G0[0][1] * G0[1][0];
-  if (!(det > 0) || !(det0 > 0)) {
+  MetricPair m;
+  if (!metric_pair(X, Z, m)) {
     r.status = force_degenerate_metric;
     return r;
   }
+  const auto &G = m.G, &G0 = m.G0;
+  const auto &dG = m.dG, &dG0 = m.dG0;
+  const double det = m.det, det0 = m.det0;
   double n[3], n0[3];
   surface::cross3(X.xl, X.xt, n);
   surface::cross3(Z.xl, Z.xt, n0);
@@ -131,15 +144,14 @@ RBFIB_HD inline ForceAtSite elastic_force_density(const Jet& X, const Jet& Z, co
 /// X: position jet; U: velocity jet (same layout); Z: reference jet.
 RBFIB_HD inline ForceAtSite dissipative_force_density(const Jet& X, const Jet& U, const Jet& Z, double nu) {
   ForceAtSite r{{0, 0, 0}, 0, 0, 0, force_ok};
-  double G[2][2], dG[2][2][2], G0[2][2], dG0[2][2][2];
-  metric_and_derivatives(X, G, dG);
-  metric_and_derivatives(Z, G0, dG0);
-  const double det = G[0][0] * G[1][1] - G[0][1] * G[1][0];
-  const double det0 = G0[0][0] * G0[1][1] - G0[0][1] * G0[1][0];
-  if (!(det > 0) || !(det0 > 0)) {
+  MetricPair m;
+  if (!metric_pair(X, Z, m)) {
     r.status = force_degenerate_metric;
     return r;
   }
+  const auto &G = m.G, &G0 = m.G0;
+  const auto &dG = m.dG, &dG0 = m.dG0;
+  const double det = m.det, det0 = m.det0;
   double Gi[2][2];
   inverse2(G, det, Gi);
   const double* Xd[2] = {X.xl, X.xt};

@@ -87,17 +87,18 @@ std::vector<double> bending_force_density(const std::string& cell, const surface
   const std::vector<surface::ScalarJet> H0s = spontaneous_curvature(cell, to_sample, model);
   const std::vector<Jet> Xd = surface::jets_from_operators(at_data, X_data);
   const std::vector<surface::PointGeometry> gd = surface::surface_geometry(Xd, cell);
-  std::vector<double> H(gd.size());  // H - H' at the data sites (H' = 0 here when constant)
-  for (std::size_t i = 0; i < gd.size(); ++i) H[i] = gd[i].H - (model.H0_data.empty() ? 0.0 : model.H0_data[i]);
+  // H - H' at the data sites; a constant H' drops out of the Laplacian, so it is left out here.
+  std::vector<double> dH(gd.size());
+  for (std::size_t i = 0; i < gd.size(); ++i) dH[i] = gd[i].H - (model.H0_data.empty() ? 0.0 : model.H0_data[i]);
   const std::vector<Jet> Xs = surface::jets_from_operators(to_sample, X_data);
   const std::vector<surface::PointGeometry> gs = surface::surface_geometry(Xs, cell);
-  const std::vector<surface::ScalarJet> Hs = surface::scalar_jets_from_operators(to_sample, H);
+  const std::vector<surface::ScalarJet> dHs = surface::scalar_jets_from_operators(to_sample, dH);
   std::vector<double> F(3 * Xs.size());
   for (std::size_t i = 0; i < Xs.size(); ++i) {
     const surface::PointGeometry g0 = surface::point_geometry(Z[i]);
     if (!(g0.det_g > 0))
       throw NumericalError("cell '" + cell + "': reference metric degenerate at sample site " + to_text(i));
-    const double lap = surface::laplace_beltrami(Xs[i], Hs[i]);  // lap_s (H - H')
+    const double lap = surface::laplace_beltrami(Xs[i], dHs[i]);  // lap_s (H - H')
     bending_force_density(gs[i], g0.det_g, lap, model.kappa, H0s[i].u, &F[3 * i]);
     if (!model.H0_data.empty()) {  // tangential term of a material field H'
       double grad[3];
