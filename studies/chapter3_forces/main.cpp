@@ -97,12 +97,28 @@ struct EvalSet {
   std::vector<double> Zpts;
 };
 
+void finish_eval_set(EvalSet& e) {
+  e.min_weight = *std::min_element(e.w.begin(), e.w.end());
+  e.max_weight = *std::max_element(e.w.begin(), e.w.end());
+}
+
+/// The same sites (and triangulation) as `base` with the RBF weights of eq. (2.22), phi = r^3.
+EvalSet with_rbf_weights(const EvalSet& base, const std::string& points) {
+  EvalSet e = base;
+  e.points = points;
+  const RbfWeights q = rbf_sphere_weights(e.sites, 3);
+  e.w = q.w;
+  e.rbf_rcond = q.rcond;
+  finish_eval_set(e);
+  return e;
+}
+
+/// "MD" (stored sites, eq. 45 weights) or "spiral" (Bauer spiral, eq. 2.22 weights).
 EvalSet make_eval_set(const std::string& points, index_t n) {
   EvalSet e;
   e.points = points;
   e.n = n;
-  const bool md = points.rfind("MD", 0) == 0;
-  if (md) {
+  if (points == "MD") {
     const int N = static_cast<int>(std::lround(std::sqrt(double(n)))) - 1;
     const std::string file = st::source_path("reference/point_sets/max_determinant_N" + to_text(N) + ".txt");
     e.sites = read_sphere_sites(file);
@@ -114,20 +130,14 @@ EvalSet make_eval_set(const std::string& points, index_t n) {
                            " (the square system has no nonnegative solution)");
     e.w = q.w;
     e.eq45_residual = q.residual;
+    finish_eval_set(e);
   } else {
     e.sites = bauer_spiral(n);
   }
-  if (points != "MD") {
-    const RbfWeights q = rbf_sphere_weights(e.sites, 3);
-    e.w = q.w;
-    e.rbf_rcond = q.rcond;
-  }
-  e.min_weight = *std::min_element(e.w.begin(), e.w.end());
-  e.max_weight = *std::max_element(e.w.begin(), e.w.end());
   e.tris = sphere_triangulation(e.sites);
   e.Z = unit_sphere_jets(e.sites);
   e.Zpts = unit_sphere_points(e.sites);
-  return e;
+  return points == "MD" ? e : with_rbf_weights(e, points);
 }
 
 /// Least-squares slope p of log(err) = c - p log(x): the paper's "power-law fit" (Figs. 2-3).
@@ -209,7 +219,9 @@ int main(int argc, char** argv) {
     for (const auto& [points, ns] : point_sets) {
       for (index_t n : ns) {
         const auto t0 = std::chrono::steady_clock::now();
-        const EvalSet& e = sets.emplace(std::make_pair(points, n), make_eval_set(points, n)).first->second;
+        EvalSet made = points == "MD_rbf_weights" ? with_rbf_weights(sets.at({"MD", n}), points)
+                                                  : make_eval_set(points, n);
+        const EvalSet& e = sets.emplace(std::make_pair(points, n), std::move(made)).first->second;
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         double qi[2] = {0, 0};
         int k = 0;
