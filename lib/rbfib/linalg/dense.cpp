@@ -1,0 +1,200 @@
+#include "rbfib/linalg/dense.hpp"
+
+#include "rbfib/core/error.hpp"
+
+#include <thrust/copy.h>
+
+#include <algorithm>
+
+#if defined(RBFIB_BACKEND_CUDA)
+#include <cublas_v2.h>
+#include <cuda_runtime.h>
+#include <cusolverDn.h>
+#else
+#include <cblas.h>
+// LAPACK (OpenBLAS exports its own optimized getrf/getrs); the trailing length is the hidden
+// Fortran string length of `trans`.
+extern "C" {
+void dgetrf_(const int* m, const int* n, double* a, const int* lda, int* ipiv, int* info);
+void dgetrs_(const char* trans, const int* n, const int* nrhs, const double* a, const int* lda, const int* ipiv,
+             double* b, const int* ldb, int* info, std::size_t trans_len);
+}
+#endif
+
+namespace rbfib::linalg {
+
+DeviceMatrix DeviceMatrix::from_host(index_t rows, index_t cols, const double* column_major) {
+  DeviceMatrix m(rows, cols);
+  thrust::copy(column_major, column_major + rows * cols, m.a_.begin());
+  return m;
+}
+
+void DeviceMatrix::resize(index_t rows, index_t cols) {
+  rows_ = rows;
+  cols_ = cols;
+  a_.resize(static_cast<std::size_t>(rows * cols));
+}
+
+std::vector<double> DeviceMatrix::to_host() const {
+  std::vector<double> h(a_.size());
+  thrust::copy(a_.begin(), a_.end(), h.begin());
+  return h;
+}
+
+namespace {
+int to_int(index_t v, const char* what) {
+  require(v >= 0 && v <= index_t(2147483647), what, v, "must fit a 32-bit BLAS integer");
+  return static_cast<int>(v);
+}
+int ld_of(index_t ld) { return to_int(std::max<index_t>(ld, 1), "leading dimension"); }
+
+void check_gemm(Op op_a, Op op_b, const ConstMatrixView& A, const ConstMatrixView& B, const MatrixView& C,
+                index_t& m, index_t& n, index_t& k) {
+  m = op_a == Op::none ? A.rows : A.cols;
+  k = op_a == Op::none ? A.cols : A.rows;
+  const index_t kb = op_b == Op::none ? B.rows : B.cols;
+  n = op_b == Op::none ? B.cols : B.rows;
+  require(kb == k, "gemm: inner dimension of op(B)", kb, "must equal that of op(A) (" + to_text(k) + ")");
+  require(C.rows == m && C.cols == n, "gemm: C shape", to_text(C.rows) + " x " + to_text(C.cols),
+          "must be " + to_text(m) + " x " + to_text(n));
+  require(A.ld >= std::max<index_t>(A.rows, 1) && B.ld >= std::max<index_t>(B.rows, 1) &&
+              C.ld >= std::max<index_t>(C.rows, 1),
+          "gemm: leading dimension", to_text(A.ld) + ", " + to_text(B.ld) + ", " + to_text(C.ld),
+          "must be >= the row counts");
+}
+
+#if defined(RBFIB_BACKEND_CUDA)
+void cuda_check(cudaError_t e, const char* what) {
+  if (e != cudaSuccess) throw NumericalError(std::string(what) + ": " + cudaGetErrorString(e));
+}
+void cublas_check(cublasStatus_t s, const char* what) {
+  if (s != CUBLAS_STATUS_SUCCESS) throw NumericalError(std::string(what) + ": cuBLAS status " + to_text(int(s)));
+}
+void cusolver_check(cusolverStatus_t s, const char* what) {
+  if (s != CUSOLVER_STATUS_SUCCESS) throw NumericalError(std::string(what) + ": cuSOLVER status " + to_text(int(s)));
+}
+cublasHandle_t cublas() {
+  static cublasHandle_t h = [] {
+    cublasHandle_t x;
+    cublas_check(cublasCreate(&x), "cublasCreate");
+    return x;
+  }();
+  return h;
+}
+cusolverDnHandle_t cusolver() {
+  static cusolverDnHandle_t h = [] {
+    cusolverDnHandle_t x;
+    cusolver_check(cusolverDnCreate(&x), "cusolverDnCreate");
+    return x;
+  }();
+  return h;
+}
+cublasOperation_t cu_op(Op o) { return o == Op::none ? CUBLAS_OP_N : CUBLAS_OP_T; }
+int read_info(const device_vector<int>& info) { return info[0]; }
+#else
+CBLAS_TRANSPOSE cblas_op(Op o) { return o == Op::none ? CblasNoTrans : CblasTrans; }
+#endif
+}  // namespace
+
+void gemm(Op op_a, Op op_b, double alpha, ConstMatrixView A, ConstMatrixView B, double beta, MatrixView C) {
+  gemm_strided_batched(op_a, op_b, alpha, A, 0, B, 0, beta, C, 0, 1);
+}
+
+void gemm_strided_batched(Op op_a, Op op_b, double alpha, ConstMatrixView A, index_t stride_a, ConstMatrixView B,
+                          index_t stride_b, double beta, MatrixView C, index_t stride_c, index_t count) {
+  index_t m, n, k;
+  check_gemm(op_a, op_b, A, B, C, m, n, k);
+  require(count >= 0, "gemm: batch count", count, "must be >= 0");
+  if (m == 0 || n == 0 || count == 0) return;
+  const int im = to_int(m, "gemm: rows"), in = to_int(n, "gemm: columns"), ik = to_int(k, "gemm: inner dimension");
+#if defined(RBFIB_BACKEND_CUDA)
+  if (count == 1)
+    cublas_check(cublasDgemm(cublas(), cu_op(op_a), cu_op(op_b), im, in, ik, &alpha, A.data, ld_of(A.ld), B.data,
+                             ld_of(B.ld), &beta, C.data, ld_of(C.ld)),
+                 "cublasDgemm");
+  else
+    cublas_check(cublasDgemmStridedBatched(cublas(), cu_op(op_a), cu_op(op_b), im, in, ik, &alpha, A.data,
+                                           ld_of(A.ld), stride_a, B.data, ld_of(B.ld), stride_b, &beta, C.data,
+                                           ld_of(C.ld), stride_c, to_int(count, "gemm: batch count")),
+                 "cublasDgemmStridedBatched");
+#else
+  for (index_t b = 0; b < count; ++b)
+    cblas_dgemm(CblasColMajor, cblas_op(op_a), cblas_op(op_b), im, in, ik, alpha, A.data + b * stride_a, ld_of(A.ld),
+                B.data + b * stride_b, ld_of(B.ld), beta, C.data + b * stride_c, ld_of(C.ld));
+#endif
+}
+
+LuFactors lu_factor(const DeviceMatrix& A, const char* what) {
+  require(A.rows() == A.cols(), std::string(what) + ": LU of a non-square matrix, rows", A.rows(),
+          "must equal columns (" + to_text(A.cols()) + ")");
+  LuFactors f;
+  f.lu = A;
+  const int n = to_int(A.rows(), "LU order");
+  f.ipiv.resize(static_cast<std::size_t>(n));
+  if (n == 0) return f;
+  int info = 0;
+#if defined(RBFIB_BACKEND_CUDA)
+  int lwork = 0;
+  cusolver_check(cusolverDnDgetrf_bufferSize(cusolver(), n, n, ptr(f.lu.storage()), n, &lwork), "getrf buffer");
+  dvec work(static_cast<std::size_t>(std::max(lwork, 1)));
+  device_vector<int> dinfo(1, 0);
+  cusolver_check(cusolverDnDgetrf(cusolver(), n, n, ptr(f.lu.storage()), n, ptr(work), ptr(f.ipiv), ptr(dinfo)),
+                 "cusolverDnDgetrf");
+  info = read_info(dinfo);
+#else
+  dgetrf_(&n, &n, ptr(f.lu.storage()), &n, ptr(f.ipiv), &info);
+#endif
+  if (info != 0)
+    throw NumericalError(std::string(what) + ": LU factorization failed (getrf info = " + to_text(info) +
+                         (info > 0 ? ", U is exactly singular)" : ")"));
+  return f;
+}
+
+LuFactors lu_from_host(index_t n, const double* lu_column_major, const std::vector<index_t>& perm) {
+  require(static_cast<index_t>(perm.size()) == n, "LU row permutation size", perm.size(), "must equal " + to_text(n));
+  LuFactors f;
+  f.lu = DeviceMatrix::from_host(n, n, lu_column_major);
+  // Row i of P A is row perm[i] of A: swap it into place, in order (LAPACK's interchanges).
+  std::vector<index_t> at(n), where(n);
+  for (index_t i = 0; i < n; ++i) at[i] = where[i] = i;
+  std::vector<int> ipiv(n);
+  for (index_t i = 0; i < n; ++i) {
+    require(perm[i] >= 0 && perm[i] < n, "LU row permutation entry", perm[i], "must lie in [0, " + to_text(n) + ")");
+    const index_t j = where[perm[i]];
+    std::swap(at[i], at[j]);
+    where[at[i]] = i;
+    where[at[j]] = j;
+    ipiv[i] = static_cast<int>(j + 1);
+  }
+  f.ipiv.assign(ipiv.begin(), ipiv.end());
+  return f;
+}
+
+void lu_solve(const LuFactors& f, Op op, MatrixView B) {
+  require(B.rows == f.n(), "LU solve: right-hand side rows", B.rows, "must equal the order " + to_text(f.n()));
+  if (B.rows == 0 || B.cols == 0) return;
+  const int n = to_int(f.n(), "LU order"), nrhs = to_int(B.cols, "LU solve: right-hand sides"), ldb = ld_of(B.ld);
+  int info = 0;
+#if defined(RBFIB_BACKEND_CUDA)
+  device_vector<int> dinfo(1, 0);
+  cusolver_check(cusolverDnDgetrs(cusolver(), cu_op(op), n, nrhs, ptr(f.lu.storage()), n, ptr(f.ipiv), B.data, ldb,
+                                  ptr(dinfo)),
+                 "cusolverDnDgetrs");
+  info = read_info(dinfo);
+#else
+  const char trans = op == Op::none ? 'N' : 'T';
+  dgetrs_(&trans, &n, &nrhs, ptr(f.lu.storage()), &n, ptr(f.ipiv), B.data, &ldb, &info, 1);
+#endif
+  if (info != 0) throw NumericalError("LU solve (getrs): info = " + to_text(info));
+}
+
+std::string dense_backend_name() {
+#if defined(RBFIB_BACKEND_CUDA)
+  return "cuBLAS/cuSOLVER";
+#else
+  std::string s = openblas_get_config();
+  return "OpenBLAS (" + s + "), core " + openblas_get_corename();
+#endif
+}
+
+}  // namespace rbfib::linalg
