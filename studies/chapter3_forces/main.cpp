@@ -75,7 +75,8 @@ ErrorNorms force_error(const std::vector<double>& F, const std::vector<double>& 
 /// |sum_i F^_i|_inf: the quadrature error of a translation-invariant force (paper Sec. 4.1).
 double force_integral(const std::vector<double>& F) {
   double s[3] = {0, 0, 0};
-  for (std::size_t i = 0; i < F.size(); ++i) s[i % 3] += F[i];
+  const std::size_t n = F.size() / 3;  // F[d n + i]
+  for (std::size_t i = 0; i < F.size(); ++i) s[i / n] += F[i];
   return std::max({std::abs(s[0]), std::abs(s[1]), std::abs(s[2])});
 }
 
@@ -136,7 +137,7 @@ EvalSet make_eval_set(const std::string& points, index_t n) {
   }
   e.tris = sphere_triangulation(e.sites);
   e.Z = unit_sphere_jets(e.sites);
-  e.Zpts = unit_sphere_points(e.sites);
+  e.Zpts = ellipsoid(1, 1, 1).points(e.sites);
   return points == "MD" ? e : with_rbf_weights(e, points);
 }
 
@@ -249,7 +250,7 @@ int main(int argc, char** argv) {
       for (const auto& [name, s] : std::vector<std::pair<std::string, const PerturbedEllipsoid*>>{
                {"ellipsoid", &ell}, {"perturbed", &pert}}) {
         const std::vector<double> X = s->points(e.sites);
-        for (index_t i = 0; i < e.n; ++i) t["rows"].push(row({name, X[3 * i], X[3 * i + 1], X[3 * i + 2]}));
+        for (index_t i = 0; i < e.n; ++i) t["rows"].push(row({name, X[i], X[e.n + i], X[2 * e.n + i]}));
       }
       T["fig1_shapes"] = t;
     }

@@ -31,11 +31,12 @@ double max_abs(const std::vector<double>& v) {
   return m;
 }
 
-/// Central-difference gradient of f at x (step h), every `stride`-th component (others 0).
+/// Central-difference gradient of f at x (step h) in the first `count` components (others 0;
+/// all when count = 0). Points are n x 3 column-major, so count = n takes the x components.
 std::vector<double> fd_gradient(const std::function<double(const std::vector<double>&)>& f, std::vector<double> x,
-                                double h, std::size_t stride = 1) {
+                                double h, std::size_t count = 0) {
   std::vector<double> g(x.size(), 0.0);
-  for (std::size_t i = 0; i < x.size(); i += stride) {
+  for (std::size_t i = 0; i < (count ? count : x.size()); ++i) {
     const double x0 = x[i];
     x[i] = x0 + h;
     const double fp = f(x);
@@ -112,7 +113,7 @@ TEST(ContinuousForce, SurfaceTensionEqualsTwiceMeanCurvatureTimesNormal) {
     for (index_t i = 0; i < s.size(); ++i) {
       const PointGeometry g = point_geometry(X[i]), g0 = point_geometry(Z[i]);
       for (int d = 0; d < 3; ++d)
-        EXPECT_NEAR(F[3 * i + d], 2 * g.H * g.n[d] * std::sqrt(g.det_g / g0.det_g), 1e-12 * scale);
+        EXPECT_NEAR(F[d * s.size() + i], 2 * g.H * g.n[d] * std::sqrt(g.det_g / g0.det_g), 1e-12 * scale);
     }
   }
 }
@@ -163,8 +164,8 @@ TEST(ContinuousForce, TranslationInvariantForcesIntegrateToZero) {
       double sum[3] = {0, 0, 0}, tot = 0;
       for (index_t i = 0; i < s.size(); ++i)
         for (int d = 0; d < 3; ++d) {
-          sum[d] += F[3 * i + d];
-          tot += std::abs(F[3 * i + d]);
+          sum[d] += F[d * s.size() + i];
+          tot += std::abs(F[d * s.size() + i]);
         }
       r[k++] = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]) / tot;
     }
@@ -210,10 +211,11 @@ TEST(Dissipation, IsMinusTheVelocityDerivativeOfTheRayleighFunctional) {
   for (std::size_t i = 0; i < g.size(); ++i) EXPECT_NEAR(p[i], -g[i], 1e-7 * scale) << i;
   // A rigid rotation U = w x X dissipates nothing.
   std::vector<double> R(X0.size());
-  for (std::size_t i = 0; i < R.size(); i += 3) {
-    R[i] = -0.5 * X0[i + 1];
-    R[i + 1] = 0.5 * X0[i];
-    R[i + 2] = 0.0;
+  const std::size_t n = X0.size() / 3;
+  for (std::size_t i = 0; i < n; ++i) {
+    R[i] = -0.5 * X0[n + i];
+    R[n + i] = 0.5 * X0[i];
+    R[2 * n + i] = 0.0;
   }
   EXPECT_LT(std::abs(phi(R)), 1e-14);
 }
@@ -243,13 +245,13 @@ TEST(Bending, IsMinusTheDerivativeOfTheBendingEnergy) {
     auto energy = [&](const std::vector<double>& X) {
       return bending_energy("fd", jets_from_operators(*cell.ops, X), cell.Z, m, cell.w);
     };
-    const std::vector<double> g = fd_gradient(energy, X0, 1e-6, 3);
+    const std::vector<double> g = fd_gradient(energy, X0, 1e-6, X0.size() / 3);
     const std::vector<double> p = cell.project(
         forces_from_density(bending_force_density("fd", *cell.at_data, *cell.ops, X0, cell.Z, m), cell.w));
     const double scale = max_abs(g);
     ASSERT_GT(scale, 1e-4);
     double err = 0;
-    for (std::size_t i = 0; i < g.size(); i += 3) err = std::max(err, std::abs(p[i] + g[i]));
+    for (std::size_t i = 0; i < g.size() / 3; ++i) err = std::max(err, std::abs(p[i] + g[i]));
     EXPECT_LT(err, 0.05 * scale) << "H' = " << H0;
   }
 }
@@ -268,7 +270,7 @@ TEST(Bending, PerSiteSpontaneousCurvatureIsMinusTheDerivativeOfItsEnergy) {
   auto energy = [&](const std::vector<double>& X) {
     return bending_energy("fd", jets_from_operators(*cell.ops, X), cell.Z, m, cell.w, cell.ops.get());
   };
-  const std::vector<double> g = fd_gradient(energy, X0, 1e-6, 1);
+  const std::vector<double> g = fd_gradient(energy, X0, 1e-6);
   const std::vector<double> F = bending_force_density("fd", *cell.at_data, *cell.ops, X0, cell.Z, m);
   const std::vector<double> p = cell.project(forces_from_density(F, cell.w));
   const double scale = max_abs(g);
@@ -279,10 +281,11 @@ TEST(Bending, PerSiteSpontaneousCurvatureIsMinusTheDerivativeOfItsEnergy) {
   // Without the tangential term the mismatch is O(1).
   std::vector<double> Fn = F;
   const std::vector<Jet> Xs = jets_from_operators(*cell.ops, X0);
-  for (std::size_t i = 0; i < Xs.size(); ++i) {
+  const std::size_t ns = Xs.size();
+  for (std::size_t i = 0; i < ns; ++i) {
     const PointGeometry gi = point_geometry(Xs[i]);
-    const double fn = Fn[3 * i] * gi.n[0] + Fn[3 * i + 1] * gi.n[1] + Fn[3 * i + 2] * gi.n[2];
-    for (int d = 0; d < 3; ++d) Fn[3 * i + d] = fn * gi.n[d];
+    const double fn = Fn[i] * gi.n[0] + Fn[ns + i] * gi.n[1] + Fn[2 * ns + i] * gi.n[2];
+    for (std::size_t d = 0; d < 3; ++d) Fn[d * ns + i] = fn * gi.n[d];
   }
   const std::vector<double> pn = cell.project(forces_from_density(Fn, cell.w));
   double err_normal_only = 0;
@@ -298,7 +301,7 @@ TEST(Ldsm, ForceIsMinusTheDerivativeOfTheTriangulatedEnergy) {
   // Eq. (66) is the exact gradient of eq. (64): central differences (h = 1e-6) agree to ~1e-9.
   const SphereSites s = bauer_spiral(60);
   const auto T = sphere_triangulation(s);
-  const std::vector<double> Z = unit_sphere_points(s);
+  const std::vector<double> Z = ellipsoid(1, 1, 1).points(s);
   const std::vector<double> X0 = paper_perturbed_ellipsoid().points(s);
   for (const auto& e : all_energies()) {
     auto energy = [&](const std::vector<double>& X) { return ldsm_forces("fd", T, Z, X, e).energy; };
@@ -308,7 +311,7 @@ TEST(Ldsm, ForceIsMinusTheDerivativeOfTheTriangulatedEnergy) {
     double sum[3] = {0, 0, 0};
     for (std::size_t i = 0; i < g.size(); ++i) {
       EXPECT_NEAR(r.F[i], -g[i], 1e-7 * scale) << e.name();
-      sum[i % 3] += r.F[i];
+      sum[i / s.size()] += r.F[i];
     }
     // Translation invariance: forces sum to zero to rounding (n eps scale).
     for (double v : sum) EXPECT_LT(std::abs(v), 1e-12 * scale * 60);
@@ -318,7 +321,7 @@ TEST(Ldsm, ForceIsMinusTheDerivativeOfTheTriangulatedEnergy) {
 TEST(Ldsm, AreaWeightsSumToThePolyhedronArea) {
   const SphereSites s = bauer_spiral(200);
   const auto T = sphere_triangulation(s);
-  const std::vector<double> w = ldsm_area_weights(T, unit_sphere_points(s));
+  const std::vector<double> w = ldsm_area_weights(T, ellipsoid(1, 1, 1).points(s));
   double sum = 0;
   for (double v : w) sum += v;
   EXPECT_LT(sum, 4 * pi);
@@ -328,10 +331,10 @@ TEST(Ldsm, AreaWeightsSumToThePolyhedronArea) {
 TEST(Ldsm, DegenerateAndInvertedTrianglesRaiseNamedErrors) {
   const SphereSites s = bauer_spiral(40);
   const auto T = sphere_triangulation(s);
-  const std::vector<double> Z = unit_sphere_points(s);
+  const std::vector<double> Z = ellipsoid(1, 1, 1).points(s);
   std::vector<double> X = Z;
   const auto t = T[5];
-  for (int d = 0; d < 3; ++d) X[3 * t[1] + d] = X[3 * t[0] + d];  // coincident vertices
+  for (index_t d = 0; d < 3; ++d) X[d * s.size() + t[1]] = X[d * s.size() + t[0]];  // coincident vertices
   try {
     ldsm_forces("platelet-1", T, Z, X, EnergyDensity::surface_tension(1));
     FAIL() << "expected NumericalError";
@@ -339,7 +342,7 @@ TEST(Ldsm, DegenerateAndInvertedTrianglesRaiseNamedErrors) {
     EXPECT_NE(std::string(e.what()).find("platelet-1"), std::string::npos);
   }
   X = Z;
-  for (std::size_t i = 2; i < X.size(); i += 3) X[i] = -Z[i];  // mirror z -> -z flips equatorial triangles
+  for (index_t i = 0; i < s.size(); ++i) X[2 * s.size() + i] = -Z[2 * s.size() + i];  // mirror z -> -z flips equatorial triangles
   EXPECT_THROW(ldsm_forces("platelet-1", T, Z, X, EnergyDensity::surface_tension(1)), NumericalError);
 }
 

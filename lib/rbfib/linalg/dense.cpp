@@ -188,6 +188,23 @@ void lu_solve(const LuFactors& f, Op op, MatrixView B) {
   if (info != 0) throw NumericalError("LU solve (getrs): info = " + to_text(info));
 }
 
+void copy(ConstMatrixView A, MatrixView B) {
+  require(A.rows == B.rows && A.cols == B.cols, "matrix copy: destination shape", to_text(B.rows) + " x " + to_text(B.cols),
+          "must equal the source's " + to_text(A.rows) + " x " + to_text(A.cols));
+  if (A.ld == A.rows && B.ld == B.rows) {
+    thrust::copy(thrust::device_pointer_cast(A.data), thrust::device_pointer_cast(A.data + A.rows * A.cols),
+                 thrust::device_pointer_cast(B.data));
+    return;
+  }
+  const double* a = A.data;
+  double* b = B.data;
+  const index_t rows = A.rows, lda = A.ld, ldb = B.ld;
+  for_each_index(A.rows * A.cols, [=] RBFIB_HD (index_t k) {
+    const index_t i = k % rows, j = k / rows;
+    b[i + j * ldb] = a[i + j * lda];
+  });
+}
+
 std::string dense_backend_name() {
 #if defined(RBFIB_BACKEND_CUDA)
   return "cuBLAS/cuSOLVER";

@@ -89,6 +89,9 @@ LuFactors lu_from_host(index_t n, const double* lu_column_major, const std::vect
 /// B = op(A)^{-1} B in place (dgetrs), for B with n rows and any number of columns.
 void lu_solve(const LuFactors& f, Op op, MatrixView B);
 
+/// B = A (same shape; either may be a block with its own leading dimension).
+void copy(ConstMatrixView A, MatrixView B);
+
 /// Name of the dense backend ("OpenBLAS 0.3.21 (OpenMP), core Zen", "cuBLAS/cuSOLVER").
 std::string dense_backend_name();
 

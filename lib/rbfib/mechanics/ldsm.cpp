@@ -8,10 +8,12 @@
 namespace rbfib::mechanics {
 
 namespace {
+/// Edge vectors of triangle t; P holds n points as P[d n + i].
 void edges(const std::vector<double>& P, const surface::Triangle& t, double u[2][3]) {
-  for (int d = 0; d < 3; ++d) {
-    u[0][d] = P[3 * t[0] + d] - P[3 * t[2] + d];
-    u[1][d] = P[3 * t[1] + d] - P[3 * t[2] + d];
+  const std::size_t n = P.size() / 3;
+  for (std::size_t d = 0; d < 3; ++d) {
+    u[0][d] = P[d * n + t[0]] - P[d * n + t[2]];
+    u[1][d] = P[d * n + t[1]] - P[d * n + t[2]];
   }
 }
 void gram(const double u[2][3], double G[2][2]) {
@@ -61,9 +63,9 @@ LdsmResult ldsm_forces(const std::string& cell, const std::vector<surface::Trian
         for (int d = 0; d < 3; ++d) dW[a][d] += S * u[b][d];
       }
     for (int d = 0; d < 3; ++d) {
-      r.F[3 * tris[t][0] + d] -= A0 * dW[0][d];
-      r.F[3 * tris[t][1] + d] -= A0 * dW[1][d];
-      r.F[3 * tris[t][2] + d] += A0 * (dW[0][d] + dW[1][d]);
+      r.F[d * nv + tris[t][0]] -= A0 * dW[0][d];
+      r.F[d * nv + tris[t][1]] -= A0 * dW[1][d];
+      r.F[d * nv + tris[t][2]] += A0 * (dW[0][d] + dW[1][d]);
     }
   }
   for (double f : r.F)

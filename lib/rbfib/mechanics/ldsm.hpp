@@ -6,7 +6,7 @@
 // The force on vertex i is F^_i = -dE/dX_i (eqs. 65-66); per triangle
 //   dW/du_a = sum_b S_ab u_b,   S = 2 W_1 G0^{-1} + 2 W_2 det C G^{-1}   (as eq. 34),
 // so dE/dX1 = A0 dW/du_0, dE/dX2 = A0 dW/du_1, dE/dX3 = -(dE/dX1 + dE/dX2).
-// Positions: 3 per vertex, site-major.
+// Positions and forces: n x 3 column-major, X[d n + i] (docs/math.md).
 #include "rbfib/mechanics/energy.hpp"
 #include "rbfib/surface/triangulation.hpp"
 

@@ -30,12 +30,13 @@ void require_same(const std::string& cell, std::size_t a, std::size_t b, const c
 std::vector<double> elastic_force_density(const std::string& cell, const std::vector<Jet>& X,
                                           const std::vector<Jet>& Z, const EnergyDensity& energy) {
   require_same(cell, X.size(), Z.size(), "reference jets");
-  std::vector<double> F(3 * X.size());
-  // Host launch over sites; the kernel is host+device.
-  for (std::size_t i = 0; i < X.size(); ++i) {
+  const std::size_t n = X.size();
+  std::vector<double> F(3 * n);
+  // Host loop over sites (the per-cell reference path; cells/ launches the same kernel on the device).
+  for (std::size_t i = 0; i < n; ++i) {
     const ForceAtSite r = elastic_force_density(X[i], Z[i], energy);
     check_status(cell, i, r);
-    for (int d = 0; d < 3; ++d) F[3 * i + d] = r.F[d];
+    for (int d = 0; d < 3; ++d) F[d * n + i] = r.F[d];
   }
   return F;
 }
@@ -56,9 +57,10 @@ double elastic_energy(const std::string& cell, const std::vector<Jet>& X, const 
 std::vector<double> forces_from_density(const std::vector<double>& density, const std::vector<double>& dA0) {
   require(density.size() == 3 * dA0.size(), "force density size", density.size(),
           "must be 3 x number of weights (" + to_text(dA0.size()) + ")");
+  const std::size_t n = dA0.size();
   std::vector<double> F(density.size());
-  for (std::size_t i = 0; i < dA0.size(); ++i)
-    for (int d = 0; d < 3; ++d) F[3 * i + d] = density[3 * i + d] * dA0[i];
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t d = 0; d < 3; ++d) F[d * n + i] = density[d * n + i] * dA0[i];
   return F;
 }
 
@@ -93,21 +95,24 @@ std::vector<double> bending_force_density(const std::string& cell, const surface
   const std::vector<Jet> Xs = surface::jets_from_operators(to_sample, X_data);
   const std::vector<surface::PointGeometry> gs = surface::surface_geometry(Xs, cell);
   const std::vector<surface::ScalarJet> dHs = surface::scalar_jets_from_operators(to_sample, dH);
-  std::vector<double> F(3 * Xs.size());
-  for (std::size_t i = 0; i < Xs.size(); ++i) {
+  const std::size_t n = Xs.size();
+  std::vector<double> F(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
     const surface::PointGeometry g0 = surface::point_geometry(Z[i]);
     if (!(g0.det_g > 0))
       throw NumericalError("cell '" + cell + "': reference metric degenerate at sample site " + to_text(i));
     const double lap = surface::laplace_beltrami(Xs[i], dHs[i]);  // lap_s (H - H')
-    bending_force_density(gs[i], g0.det_g, lap, model.kappa, H0s[i].u, &F[3 * i]);
+    double f[3];
+    bending_force_density(gs[i], g0.det_g, lap, model.kappa, H0s[i].u, f);
     if (!model.H0_data.empty()) {  // tangential term of a material field H'
       double grad[3];
       surface::surface_gradient(Xs[i], H0s[i], grad);
       const double c = -4 * model.kappa * std::sqrt(gs[i].det_g / g0.det_g) * (gs[i].H - H0s[i].u);
-      for (int d = 0; d < 3; ++d) F[3 * i + d] += c * grad[d];
+      for (int d = 0; d < 3; ++d) f[d] += c * grad[d];
     }
+    for (int d = 0; d < 3; ++d) F[d * n + i] = f[d];
     for (int d = 0; d < 3; ++d)
-      if (!std::isfinite(F[3 * i + d]))
+      if (!std::isfinite(f[d]))
         throw NumericalError("cell '" + cell + "': non-finite bending force density at sample site " + to_text(i));
   }
   return F;
@@ -140,11 +145,12 @@ std::vector<double> dissipative_force_density(const std::string& cell, const std
   require(nu >= 0, "membrane viscosity nu (dyn s/cm)", nu, "must be >= 0");
   require_same(cell, X.size(), Z.size(), "reference jets");
   require_same(cell, U.size(), X.size(), "velocity jets");
-  std::vector<double> F(3 * X.size());
-  for (std::size_t i = 0; i < X.size(); ++i) {
+  const std::size_t n = X.size();
+  std::vector<double> F(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
     const ForceAtSite r = dissipative_force_density(X[i], U[i], Z[i], nu);
     check_status(cell, i, r);
-    for (int d = 0; d < 3; ++d) F[3 * i + d] = r.F[d];
+    for (int d = 0; d < 3; ++d) F[d * n + i] = r.F[d];
   }
   return F;
 }

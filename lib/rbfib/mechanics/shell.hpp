@@ -11,7 +11,9 @@
 // Degenerate input raises NumericalError naming the cell, the site and the cause.
 // Units (CGS): X in cm, moduli in dyn/cm, dA0 in cm^2 (reference area), force density in
 // dyn/cm^2 (per unit reference area), force F^ in dyn, energy in erg. Arrays of points or
-// forces hold 3 doubles per site, site-major.
+// forces of one cell are n x 3 column-major, X[d n + i] (docs/math.md).
+// These are the per-cell host functions (the reference the batched device path of cells/ is
+// tested against); both call the same pointwise kernels of force_kernels.hpp.
 #include "rbfib/mechanics/force_kernels.hpp"
 #include "rbfib/surface/geometry.hpp"
 

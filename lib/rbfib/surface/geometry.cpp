@@ -4,36 +4,37 @@
 
 namespace rbfib::surface {
 
+namespace {
+/// Uploads `cols` columns of data-site values, applies the operators and downloads the jets.
+struct HostJets {
+  std::vector<double> v, d;
+  JetView view;
+  HostJets(const SurfaceOperators& ops, const std::vector<double>& data, index_t cols) {
+    require(static_cast<index_t>(data.size()) == cols * ops.n_data(), "data-site values size", data.size(),
+            "must be " + to_text(cols) + " x data sites (" + to_text(ops.n_data()) + ")");
+    const index_t ns = ops.n_sample();
+    const linalg::DeviceMatrix F = linalg::DeviceMatrix::from_host(ops.n_data(), cols, data.data());
+    linalg::DeviceMatrix V(ns, cols), D(derivative_count * ns, cols);
+    OperatorWorkspace work;
+    apply_operators(ops, F.view(), V.view(), D.view(), work);
+    v = V.to_host();
+    d = D.to_host();
+    view = JetView{v.data(), ns, d.data(), derivative_count * ns, ns, 1};
+  }
+};
+}  // namespace
+
 std::vector<Jet> jets_from_operators(const SurfaceOperators& ops, const std::vector<double>& X_data) {
-  std::vector<double> out[6];
-  apply_operators(ops, X_data, out);
+  const HostJets h(ops, X_data, 3);
   std::vector<Jet> jets(static_cast<std::size_t>(ops.n_sample()));
-  for (index_t i = 0; i < ops.n_sample(); ++i)
-    for (int d = 0; d < 3; ++d) {
-      Jet& j = jets[i];
-      j.x[d] = out[0][3 * i + d];
-      j.xl[d] = out[1][3 * i + d];
-      j.xt[d] = out[2][3 * i + d];
-      j.xll[d] = out[3][3 * i + d];
-      j.xlt[d] = out[4][3 * i + d];
-      j.xtt[d] = out[5][3 * i + d];
-    }
+  for (index_t i = 0; i < ops.n_sample(); ++i) jets[i] = h.view.jet(0, i);
   return jets;
 }
 
 std::vector<ScalarJet> scalar_jets_from_operators(const SurfaceOperators& ops, const std::vector<double>& u_data) {
-  const DenseMatrix* M[6] = {&ops.id, &ops.d_l, &ops.d_t, &ops.d_ll, &ops.d_lt, &ops.d_tt};
-  std::vector<double> out[6], c;
-  const std::vector<double>* in = &u_data;
-  if (ops.factored()) {
-    c.resize(u_data.size());
-    solve_coefficients(ops, u_data.data(), 1, c.data());
-    in = &c;
-  }
-  for (int q = 0; q < 6; ++q) apply_to_scalars(*M[q], *in, out[q]);
+  const HostJets h(ops, u_data, 1);
   std::vector<ScalarJet> jets(static_cast<std::size_t>(ops.n_sample()));
-  for (index_t i = 0; i < ops.n_sample(); ++i)
-    jets[i] = ScalarJet{out[0][i], out[1][i], out[2][i], out[3][i], out[4][i], out[5][i]};
+  for (index_t i = 0; i < ops.n_sample(); ++i) jets[i] = h.view.scalar(0, i);
   return jets;
 }
 

@@ -1,14 +1,17 @@
 #pragma once
-// Field-level geometry on the sites of a set of surface operators: the jets of a surface from
-// its values at the data sites, and curvature fields (paper eqs. 75-83).
+// Field-level geometry on the sites of a set of surface operators, for one cell on the host: the
+// jets of a surface from its values at the data sites, and curvature fields (paper eqs. 75-83).
+// Points are n x 3 column-major (X[d n + i], docs/math.md). The batched device path over all
+// cells of a type is in cells/.
 #include "rbfib/surface/geometry_kernels.hpp"
 #include "rbfib/surface/operators.hpp"
 
+#include <string>
 #include <vector>
 
 namespace rbfib::surface {
 
-/// Jets at the sample sites of ops from the points X (site-major, 3 per data site).
+/// Jets at the sample sites of ops from the points X (n_d x 3, column-major).
 std::vector<Jet> jets_from_operators(const SurfaceOperators& ops, const std::vector<double>& X_data);
 
 /// Scalar jets at the sample sites from values at the data sites.

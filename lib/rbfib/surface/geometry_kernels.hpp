@@ -18,6 +18,40 @@ struct ScalarJet {
   double u, ul, ut, ull, ult, utt;
 };
 
+/// Jets of fields as apply_operators writes them (docs/math.md): for N cells, component a of
+/// cell c is column a N + c; its value at site i is v[i + col ldv] and derivative q (lambda,
+/// theta, lambda lambda, lambda theta, theta theta) is d[q n + i + col ldd]. A scalar field has
+/// one column per cell (column c).
+struct JetView {
+  const double* v = nullptr;
+  index_t ldv = 0;
+  const double* d = nullptr;
+  index_t ldd = 0;
+  index_t n = 0;      ///< sites per cell
+  index_t cells = 1;  ///< N
+
+  RBFIB_HD double value(index_t col, index_t i) const { return v[i + col * ldv]; }
+  RBFIB_HD double derivative(int q, index_t col, index_t i) const { return d[q * n + i + col * ldd]; }
+  RBFIB_HD Jet jet(index_t c, index_t i) const {
+    Jet j;
+    for (int a = 0; a < 3; ++a) {
+      const index_t col = a * cells + c;
+      j.x[a] = value(col, i);
+      j.xl[a] = derivative(0, col, i);
+      j.xt[a] = derivative(1, col, i);
+      j.xll[a] = derivative(2, col, i);
+      j.xlt[a] = derivative(3, col, i);
+      j.xtt[a] = derivative(4, col, i);
+    }
+    return j;
+  }
+  /// Scalar jet of column c; the value is 0 where v is null (only derivatives computed).
+  RBFIB_HD ScalarJet scalar(index_t c, index_t i) const {
+    return ScalarJet{v ? value(c, i) : 0.0, derivative(0, c, i), derivative(1, c, i), derivative(2, c, i),
+                     derivative(3, c, i), derivative(4, c, i)};
+  }
+};
+
 struct PointGeometry {
   double E, F, G;    ///< first fundamental form (eq. 77), metric G = [[E, F], [F, G]] (eq. 12)
   double det_g;      ///< E G - F^2

@@ -27,14 +27,16 @@ void harmonic_matrices(const SphereSites& s, int M, Mat* out[6]) {
   }
 }
 
-DenseMatrix to_dense(const Mat& A) {
-  DenseMatrix D(A.rows(), A.cols());
-  for (index_t i = 0; i < A.rows(); ++i)
-    for (index_t j = 0; j < A.cols(); ++j) D(i, j) = A(i, j);
-  return D;
-}
+linalg::DeviceMatrix upload(const Mat& A) { return linalg::DeviceMatrix::from_host(A.rows(), A.cols(), A.data()); }
 
-double rcond_of(const Eigen::PartialPivLU<Mat>& lu) { return lu.rcond(); }
+/// Uploads the six operators L[0..5] (n_s x k each) as value = L[0] and the stacked derivatives.
+void upload_stacked(const Mat L[6], SurfaceOperators& ops) {
+  const index_t ns = L[0].rows();
+  Mat D(derivative_count * ns, L[0].cols());
+  for (int q = 0; q < derivative_count; ++q) D.middleRows(q * ns, ns) = L[q + 1];
+  ops.value = upload(L[0]);
+  ops.derivatives = upload(D);
+}
 }  // namespace
 
 std::shared_ptr<const SurfaceOperators> sh_operators(const SphereSites& interp, const SphereSites& eval, int M) {
@@ -45,87 +47,62 @@ std::shared_ptr<const SurfaceOperators> sh_operators(const SphereSites& interp, 
   Mat Y;
   Mat* one[6] = {&Y, nullptr, nullptr, nullptr, nullptr, nullptr};
   harmonic_matrices(interp, M, one);
-  // The factorization, computed once.
+  // The factorization, computed once (Eigen, for its condition estimate), kept in LAPACK form.
   Eigen::PartialPivLU<Mat> lu(Y);
   auto ops = std::make_shared<SurfaceOperators>();
-  ops->condition_estimate = rcond_of(lu);
+  ops->condition_estimate = lu.rcond();
   if (!(ops->condition_estimate > 1e-14))
     throw NumericalError("spherical-harmonic interpolation matrix Y (eq. 86, degree " + to_text(M) +
                          "): reciprocal condition " + to_text(ops->condition_estimate) +
                          " <= 1e-14, the sites do not determine an interpolant");
-  Mat E[6];
-  Mat* all[6] = {&E[0], &E[1], &E[2], &E[3], &E[4], &E[5]};
-  harmonic_matrices(eval, M, all);
-  // Factored: P Y = L U and the harmonics E_q at the sample sites.
-  ops->lu = to_dense(lu.matrixLU());
   {
     // Eigen's P maps row i of Y to row indices[i] of P Y.
     const auto& idx = lu.permutationP().indices();
-    ops->perm.assign(static_cast<std::size_t>(idx.size()), 0);
-    for (index_t i = 0; i < idx.size(); ++i) ops->perm[idx[i]] = i;
+    std::vector<index_t> perm(static_cast<std::size_t>(idx.size()));
+    for (index_t i = 0; i < idx.size(); ++i) perm[idx[i]] = i;
+    const Mat packed = lu.matrixLU();
+    ops->lu = linalg::lu_from_host(packed.rows(), packed.data(), perm);
   }
-  DenseMatrix* dst[6] = {&ops->id, &ops->d_l, &ops->d_t, &ops->d_ll, &ops->d_lt, &ops->d_tt};
-  for (int q = 0; q < 6; ++q) *dst[q] = to_dense(E[q]);
+  Mat E[6];
+  Mat* all[6] = {&E[0], &E[1], &E[2], &E[3], &E[4], &E[5]};
+  harmonic_matrices(eval, M, all);
+  upload_stacked(E, *ops);
+  ops->data_sites = interp.size();
   ops->description = "spherical harmonics, degree " + to_text(M) + ", m = " + to_text(interp.size()) +
                      " interpolation sites, n = " + to_text(eval.size()) + " evaluation sites";
   return ops;
 }
 
-void solve_coefficients(const SurfaceOperators& ops, const double* x, index_t stride, double* c) {
-  // c = U^{-1} L^{-1} P x, columnwise for `stride` interleaved right-hand sides.
-  const index_t m = ops.lu.rows;
-  for (index_t s = 0; s < stride; ++s) {
-    for (index_t i = 0; i < m; ++i) {
-      double v = x[ops.perm[i] * stride + s];
-      for (index_t k = 0; k < i; ++k) v -= ops.lu(i, k) * c[k * stride + s];
-      c[i * stride + s] = v;
-    }
-    for (index_t i = m - 1; i >= 0; --i) {
-      double v = c[i * stride + s];
-      for (index_t k = i + 1; k < m; ++k) v -= ops.lu(i, k) * c[k * stride + s];
-      c[i * stride + s] = v / ops.lu(i, i);
-    }
+void apply_operators(const SurfaceOperators& ops, linalg::ConstMatrixView F, linalg::MatrixView value,
+                     linalg::MatrixView derivatives, OperatorWorkspace& work) {
+  require(F.rows == ops.n_data(), "surface operators: rows of the data-site fields", F.rows,
+          "must equal the number of data sites " + to_text(ops.n_data()));
+  linalg::ConstMatrixView in = F;
+  if (ops.factored()) {  // c = Y^{-1} F by the stored LU factors
+    work.coefficients.resize(F.rows, F.cols);
+    linalg::copy(F, work.coefficients.view());
+    linalg::lu_solve(ops.lu, linalg::Op::none, work.coefficients.view());
+    in = work.coefficients.view();
   }
+  if (value.rows > 0) linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, ops.value.view(), in, 0.0, value);
+  if (derivatives.rows > 0)
+    linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, ops.derivatives.view(), in, 0.0, derivatives);
 }
 
-void apply_operators(const SurfaceOperators& ops, const std::vector<double>& X, std::vector<double> out[6]) {
-  const DenseMatrix* M[6] = {&ops.id, &ops.d_l, &ops.d_t, &ops.d_ll, &ops.d_lt, &ops.d_tt};
-  if (ops.factored()) {
-    require(static_cast<index_t>(X.size()) == 3 * ops.n_data(), "points.size()", X.size(),
-            "must be 3 x data sites (" + to_text(ops.n_data()) + ")");
-    std::vector<double> c(X.size());
-    solve_coefficients(ops, X.data(), 3, c.data());
-    for (int q = 0; q < 6; ++q) apply_to_points(*M[q], c, out[q]);
-  } else {
-    for (int q = 0; q < 6; ++q) apply_to_points(*M[q], X, out[q]);
-  }
+void apply_value_transpose(const SurfaceOperators& ops, linalg::ConstMatrixView F, linalg::MatrixView G) {
+  // I^T F; for the factored form I = E Y^{-1}, so I^T F = Y^{-T} (E^T F).
+  linalg::gemm(linalg::Op::transpose, linalg::Op::none, 1.0, ops.value.view(), F, 0.0, G);
+  if (ops.factored()) linalg::lu_solve(ops.lu, linalg::Op::transpose, G);
 }
 
 std::vector<double> transpose_identity(const SurfaceOperators& ops, const std::vector<double>& F) {
-  require(static_cast<index_t>(F.size()) == 3 * ops.n_sample(), "F.size()", F.size(),
-          "must be 3 x sample sites (" + to_text(ops.n_sample()) + ")");
-  std::vector<double> g(static_cast<std::size_t>(3 * ops.id.cols), 0.0);
-  for (index_t i = 0; i < ops.id.rows; ++i)
-    for (index_t j = 0; j < ops.id.cols; ++j)
-      for (int d = 0; d < 3; ++d) g[3 * j + d] += ops.id(i, j) * F[3 * i + d];
-  if (!ops.factored()) return g;
-  // I = E Y^{-1}: I^T F = Y^{-T} (E^T F), with Y^T = U^T L^T P.
-  const index_t m = ops.lu.rows;
-  std::vector<double> h(g.size(), 0.0), t(g.size(), 0.0);
-  for (int d = 0; d < 3; ++d) {
-    for (index_t i = 0; i < m; ++i) {  // U^T y = g
-      double v = g[3 * i + d];
-      for (index_t k = 0; k < i; ++k) v -= ops.lu(k, i) * t[3 * k + d];
-      t[3 * i + d] = v / ops.lu(i, i);
-    }
-    for (index_t i = m - 1; i >= 0; --i) {  // L^T z = y
-      double v = t[3 * i + d];
-      for (index_t k = i + 1; k < m; ++k) v -= ops.lu(k, i) * t[3 * k + d];
-      t[3 * i + d] = v;
-    }
-    for (index_t i = 0; i < m; ++i) h[3 * ops.perm[i] + d] = t[3 * i + d];  // P^T z
-  }
-  return h;
+  const index_t ns = ops.n_sample(), nd = ops.n_data();
+  require(static_cast<index_t>(F.size()) == 3 * ns, "F.size()", F.size(),
+          "must be 3 x sample sites (" + to_text(ns) + ")");
+  const linalg::DeviceMatrix Fd = linalg::DeviceMatrix::from_host(ns, 3, F.data());
+  linalg::DeviceMatrix G(nd, 3);
+  apply_value_transpose(ops, Fd.view(), G.view());
+  return G.to_host();
 }
 
 std::vector<double> sh_coefficients(const SphereSites& interp, int M, const std::vector<double>& values) {
@@ -220,12 +197,14 @@ std::shared_ptr<const SurfaceOperators> rbf_operators(const SphereSites& data, c
     if (np > 0)
       for (int q = 0; q < 6; ++q) B[q].block(i, nd, 1, np) = PE[q].row(i);
   }
-  DenseMatrix* dst[6] = {&ops->id, &ops->d_l, &ops->d_t, &ops->d_ll, &ops->d_lt, &ops->d_tt};
+  Mat L[6];
   for (int q = 0; q < 6; ++q) {
     // [L *] = B A^{-1}  <=>  A [L *]^T = B^T  (A is symmetric)
     Mat LT = lu.solve(B[q].transpose());
-    *dst[q] = to_dense(LT.topRows(nd).transpose());
+    L[q] = LT.topRows(nd).transpose();
   }
+  upload_stacked(L, *ops);
+  ops->data_sites = nd;
   ops->description = "PHS r^" + to_text(p) + " + harmonics of degree <= " + to_text(basis.sh_degree) +
                      ", n_d = " + to_text(nd) + " data sites, n_s = " + to_text(ns) + " sample sites";
   return ops;

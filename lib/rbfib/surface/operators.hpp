@@ -1,25 +1,30 @@
 #pragma once
 // Discrete surface operators: matrices that map values at n_d data (interpolation) sites to the
 // interpolant and its angular derivatives at n_s sample (evaluation) sites (Chapter 2 eq. 2.19;
-// Chapter 3 Sec. 3.1). Built once per pair of site sets and shared (std::shared_ptr) by every cell
-// of a type. Row i = sample site i, column j = data site j.
+// Chapter 3 Sec. 3.1). Built once per pair of site sets on the host (Eigen), uploaded once to the
+// execution device, and shared (std::shared_ptr) by every cell of a type.
 //
-//   id   : s(site)            d_l : ds/dlambda        d_t : ds/dtheta
-//   d_ll : d2s/dlambda2       d_lt: d2s/dlambda dtheta d_tt: d2s/dtheta2
+// Stored as two column-major device matrices acting on k columns (k = n_d, or the m coefficients
+// of the factored form below), stacked by operator:
+//   value        (n_s x k):   row i      = s(site i)
+//   derivatives  (5 n_s x k): row q n_s + i = D_q s(site i), q = 0..4 for
+//                             d/dlambda, d/dtheta, d2/dlambda2, d2/dlambda dtheta, d2/dtheta2,
+// so the jets of any number of fields (3 columns per cell for positions, 3 more for velocities,
+// one per cell for a scalar) are two products: value X and derivatives X (see docs/math.md for
+// the Lagrangian layout). The value block is the sample-site layout that ib/ spreads from.
 //
 // Two interpolants:
 // - spherical harmonics of degree <= M through m = (M+1)^2 sites (eqs. 85-86), kept factored as
-//   in the paper: to_coefficients = Y^{-1} (from the LU factorization, computed once) maps data to
-//   coefficients c, and the six matrices hold the harmonics and their derivatives at the sample
-//   sites, so L = (L Y)(sample) Y^{-1} is applied as (L Y)(sample) (Y^{-1} X), with Y^{-1} X by
-//   forward and back substitution with the stored LU factors (O(m^2), as the paper's Sec. 3.1).
+//   in the paper: the LU factors of Y (LAPACK form) map data to coefficients c = Y^{-1} X by
+//   forward and back substitution (O(m^2) per column, paper Sec. 3.1), and value/derivatives hold
+//   the harmonics and their derivatives at the sample sites, so L X = (L Y)(sample) (Y^{-1} X).
 //   This keeps round-off at the level of the coefficients, which decay for smooth surfaces;
 //   an assembled product, or an explicit inverse, loses about a decade (measured: relative force
 //   error 4e-13 instead of 4e-14 at m = 225 on the perturbed ellipsoid);
 // - polyharmonic splines phi(r) = r^p (p odd) on the chord distance of S^2 (eq. 2.18), augmented
 //   by real harmonics of degree <= sh_degree (eqs. 2.15-2.17): L = [L Phi, L P] A^{-1}, first n_d
-//   columns (eq. 2.19). sh_degree = 5 for red cells, 0 (a constant) for platelets.
-#include "rbfib/surface/dense.hpp"
+//   columns (eq. 2.19), assembled. sh_degree = 5 for red cells, 0 (a constant) for platelets.
+#include "rbfib/linalg/dense.hpp"
 #include "rbfib/surface/sphere.hpp"
 
 #include <memory>
@@ -27,18 +32,23 @@
 
 namespace rbfib::surface {
 
+/// Number of derivative operators stacked in SurfaceOperators::derivatives.
+inline constexpr int derivative_count = 5;
+
 struct SurfaceOperators {
-  DenseMatrix id, d_l, d_t, d_ll, d_lt, d_tt;
-  /// Empty for assembled operators (RBF). For the factored harmonic form: the LU factors of
-  /// P Y = L U (unit lower L and U packed in one m x m matrix) and the row permutation
-  /// (row i of P Y is row perm[i] of Y); the six matrices above then act on coefficients.
-  DenseMatrix lu;
-  std::vector<index_t> perm;
-  bool factored() const { return lu.rows > 0; }
-  index_t n_data() const { return id.cols; }
-  index_t n_sample() const { return id.rows; }
+  linalg::DeviceMatrix value;        ///< n_s x k
+  linalg::DeviceMatrix derivatives;  ///< 5 n_s x k
+  /// Factored harmonic form: the LU factors of Y (m x m); empty for assembled operators (RBF).
+  linalg::LuFactors lu;
+  index_t data_sites = 0;
   double condition_estimate = 0;  ///< reciprocal-condition estimate of the interpolation matrix
   std::string description;
+
+  bool factored() const { return lu.n() > 0; }
+  index_t n_data() const { return data_sites; }
+  index_t n_sample() const { return value.rows(); }
+  /// Device bytes held (what each cell type costs in memory).
+  std::size_t bytes() const { return value.bytes() + derivatives.bytes() + lu.bytes(); }
 };
 
 /// Spherical-harmonic interpolation operators (eqs. 85-86). Throws InputError if the sites are
@@ -55,16 +65,22 @@ struct PhsBasis {
 std::shared_ptr<const SurfaceOperators> rbf_operators(const SphereSites& data, const SphereSites& sample,
                                                       PhsBasis basis);
 
-/// The six operators applied to points X (3 per data site): out[q] holds 3 per sample site, in
-/// the order id, d_l, d_t, d_ll, d_lt, d_tt.
-void apply_operators(const SurfaceOperators& ops, const std::vector<double>& X, std::vector<double> out[6]);
+/// Workspace of apply_operators (the coefficients of the factored form), reused between calls.
+struct OperatorWorkspace {
+  linalg::DeviceMatrix coefficients;
+};
 
-/// Coefficients c = Y^{-1} x of a factored operator set, for `stride` interleaved right-hand
-/// sides (x and c hold n_data * stride doubles).
-void solve_coefficients(const SurfaceOperators& ops, const double* x, index_t stride, double* c);
+/// value = V F and derivatives = D F for the fields F (n_d x cols, any number of columns): two
+/// products on the device (after Y^{-1} F for the factored form). value must be n_s x cols and
+/// derivatives 5 n_s x cols; either may be left empty (rows = 0) to skip it.
+void apply_operators(const SurfaceOperators& ops, linalg::ConstMatrixView F, linalg::MatrixView value,
+                     linalg::MatrixView derivatives, OperatorWorkspace& work);
 
-/// I^T F: the transpose of the identity operator applied to F (3 per sample site), giving
-/// 3 per data site (the generalized force on the data sites).
+/// G = I^T F: the transpose of the value operator applied to F (n_s x cols), giving n_d x cols
+/// (the generalized force on the data sites).
+void apply_value_transpose(const SurfaceOperators& ops, linalg::ConstMatrixView F, linalg::MatrixView G);
+
+/// Host convenience for one cell: I^T F with F and the result n x 3, column-major (docs/math.md).
 std::vector<double> transpose_identity(const SurfaceOperators& ops, const std::vector<double>& F);
 
 /// Spherical-harmonic coefficients c (eq. 86) of data at (M+1)^2 sites, by one LU solve

@@ -44,7 +44,7 @@ std::vector<double> PerturbedEllipsoid::points(const SphereSites& s) const {
   std::vector<double> out(static_cast<std::size_t>(3 * s.size()));
   for (index_t i = 0; i < s.size(); ++i) {
     const Jet j = jet(s.lambda[i], s.theta[i]);
-    for (int d = 0; d < 3; ++d) out[3 * i + d] = j.x[d];
+    for (int d = 0; d < 3; ++d) out[d * s.size() + i] = j.x[d];
   }
   return out;
 }

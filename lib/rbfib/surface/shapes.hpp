@@ -17,7 +17,7 @@ struct PerturbedEllipsoid {
   double a = 0.1, b = 0.2, c = 0.2, B = 0.25, Vf = 1.0;  ///< B = 0 gives the ellipsoid (eq. 88)
   Jet jet(double lambda, double theta) const;
   std::vector<Jet> jets(const SphereSites& s) const;
-  std::vector<double> points(const SphereSites& s) const;  ///< X only, site-major
+  std::vector<double> points(const SphereSites& s) const;  ///< X only, n x 3 column-major (X[d n + i])
   /// Enclosed volume (1/3) int X . (X_l x X_t) dl dt by Gauss-Legendre x trapezoid quadrature.
   double volume() const;
 };
