@@ -46,6 +46,14 @@ void for_each_index(index_t n, Kernel kernel) {
   thrust::for_each(thrust::counting_iterator<index_t>(0), thrust::counting_iterator<index_t>(n), kernel);
 }
 
+/// Waits until all work launched on the execution device has finished (for timing phases; a
+/// no-op in the CPU build, whose launches return when done).
+inline void synchronize() {
+#if defined(__CUDACC__)
+  cudaDeviceSynchronize();
+#endif
+}
+
 /// Human-readable name of the backend this library was built for.
 inline const char* backend_name() { return RBFIB_BACKEND_NAME; }
 

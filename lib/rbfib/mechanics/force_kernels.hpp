@@ -16,7 +16,12 @@ namespace rbfib::mechanics {
 
 using surface::Jet;
 
-enum ForceStatus : int { force_ok = 0, force_degenerate_metric = 1, force_inverted = 2, force_bad_energy = 3 };
+/// Status of a site. There is no per-site "inverted" test: the energy depends on the metrics
+/// alone, which a rotation leaves unchanged, and comparing the current normal with the reference
+/// normal (an earlier check) rejects every cell that has turned by more than 90 degrees, as a
+/// tumbling cell does. A cell turned inside out is caught per cell by the sign of its enclosed
+/// volume (cells/batch.hpp).
+enum ForceStatus : int { force_ok = 0, force_degenerate_metric = 1, force_bad_energy = 3 };
 
 struct ForceAtSite {
   double F[3];  ///< force density per unit reference area
@@ -94,13 +99,6 @@ RBFIB_HD inline ForceAtSite elastic_force_density(const Jet& X, const Jet& Z, co
   const auto &G = m.G, &G0 = m.G0;
   const auto &dG = m.dG, &dG0 = m.dG0;
   const double det = m.det, det0 = m.det0;
-  double n[3], n0[3];
-  surface::cross3(X.xl, X.xt, n);
-  surface::cross3(Z.xl, Z.xt, n0);
-  if (!(surface::dot3(n, n0) > 0)) {
-    r.status = force_inverted;
-    return r;
-  }
   double Gi[2][2], G0i[2][2];
   inverse2(G, det, Gi);
   inverse2(G0, det0, G0i);

@@ -11,7 +11,6 @@ void check_status(const std::string& cell, std::size_t i, const ForceAtSite& r) 
   const char* why = nullptr;
   switch (r.status) {
     case force_degenerate_metric: why = "degenerate surface metric (det G <= 0 or det G0 <= 0)"; break;
-    case force_inverted: why = "inverted element (normal opposite to the reference normal)"; break;
     case force_bad_energy: why = "energy density undefined (det C <= 0)"; break;
     default: break;
   }

@@ -23,7 +23,7 @@
 
 namespace rbfib::mechanics {
 
-/// Force densities (3 per site) from jets; throws NumericalError on a degenerate or inverted site
+/// Force densities (3 per site) from jets; throws NumericalError on a degenerate site
 /// or a non-finite value.
 std::vector<double> elastic_force_density(const std::string& cell, const std::vector<Jet>& X,
                                           const std::vector<Jet>& Z, const EnergyDensity& energy);

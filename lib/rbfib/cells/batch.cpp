@@ -1,0 +1,284 @@
+#include "rbfib/cells/batch.hpp"
+
+#include "rbfib/core/error.hpp"
+#include "rbfib/mechanics/force_kernels.hpp"
+
+#include <thrust/copy.h>
+#include <thrust/find.h>
+#include <thrust/iterator/counting_iterator.h>
+#include <thrust/iterator/discard_iterator.h>
+#include <thrust/iterator/transform_iterator.h>
+#include <thrust/reduce.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace rbfib::cells {
+
+namespace {
+using surface::Jet;
+using surface::JetView;
+
+/// The elastic energies of a model, by value (captured by the site kernel).
+struct EnergyList {
+  mechanics::EnergyDensity e[ForceModel::max_elastic_energies];
+  int n = 0;
+};
+
+/// Status codes of a site (0: good); 1-3 are mechanics::ForceStatus.
+enum SiteStatus : int { site_non_finite = 4, site_degenerate_data = 5 };
+
+const char* status_text(int s) {
+  switch (s) {
+    case mechanics::force_degenerate_metric: return "degenerate surface metric (det G <= 0 or det G0 <= 0)";
+    case mechanics::force_bad_energy: return "energy density undefined (det C <= 0)";
+    case site_non_finite: return "non-finite force density";
+    case site_degenerate_data: return "degenerate surface metric at a data site (bending)";
+  }
+  return "unknown failure";
+}
+
+RBFIB_HD inline bool finite(double v) { return (v - v) == 0.0; }
+
+/// Number of per-site contributions reduced per cell.
+constexpr int sums_per_site = 7;  // energy, dissipation, area, volume, 3 volume moments
+
+struct CellOf {
+  index_t n;
+  RBFIB_HD index_t operator()(index_t k) const { return k / n; }
+};
+
+/// Throws the named error for the first site with a nonzero status, if any.
+void raise_first_bad(const device_vector<int>& status, index_t per_cell, const std::string& type, const char* where) {
+  const auto it = thrust::find_if(status.begin(), status.end(), [] RBFIB_HD (int s) { return s != 0; });
+  if (it == status.end()) return;
+  const index_t k = it - status.begin();
+  const int s = *it;
+  throw NumericalError("cell type '" + type + "', cell " + to_text(k / per_cell) + ": " + status_text(s) + " at " +
+                       where + " site " + to_text(k % per_cell));
+}
+
+double seconds_since(std::chrono::steady_clock::time_point& t0) {
+  synchronize();
+  const auto t1 = std::chrono::steady_clock::now();
+  const double s = std::chrono::duration<double>(t1 - t0).count();
+  t0 = t1;
+  return s;
+}
+}  // namespace
+
+Batch::Batch(std::shared_ptr<const CellType> type, const std::vector<Placement>& placements)
+    : type_(std::move(type)), cells_(static_cast<index_t>(placements.size())) {
+  require(bool(type_), "batch cell type", "null", "must be given");
+  require(cells_ > 0, "batch of '" + type_->name() + "': number of cells", cells_, "must be > 0");
+  state_ = linalg::DeviceMatrix(type_->n_data(), 6 * cells_);
+  body_.assign(static_cast<std::size_t>(3 * cells_), 0.0);
+  for (index_t c = 0; c < cells_; ++c) place(c, placements[c]);
+}
+
+void Batch::place(index_t c, const Placement& p) {
+  const std::string cell = "batch of '" + type_->name() + "', cell " + to_text(c);
+  require(c >= 0 && c < cells_, cell + ": index", c, "must lie in [0, " + to_text(cells_) + ")");
+  const double an = std::sqrt(p.axis[0] * p.axis[0] + p.axis[1] * p.axis[1] + p.axis[2] * p.axis[2]);
+  require(an > 0 && std::isfinite(an), cell + ": rotation axis length", an, "must be finite and > 0");
+  require(std::isfinite(p.angle), cell + ": rotation angle (rad)", p.angle, "must be finite");
+  for (int d = 0; d < 3; ++d) {
+    require(p.stretch[d] > 0 && std::isfinite(p.stretch[d]), cell + ": stretch[" + to_text(d) + "]", p.stretch[d],
+            "must be finite and > 0");
+    require(std::isfinite(p.center[d]), cell + ": center[" + to_text(d) + "] (cm)", p.center[d], "must be finite");
+  }
+  // Rodrigues: R = cos a I + sin a [k]x + (1 - cos a) k k^T.
+  const double k[3] = {p.axis[0] / an, p.axis[1] / an, p.axis[2] / an};
+  const double ca = std::cos(p.angle), sa = std::sin(p.angle);
+  const double K[3][3] = {{0, -k[2], k[1]}, {k[2], 0, -k[0]}, {-k[1], k[0], 0}};
+  double R[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R[i][j] = (i == j ? ca : 0.0) + sa * K[i][j] + (1 - ca) * k[i] * k[j];
+  const index_t nd = type_->n_data();
+  const std::vector<double>& Xr = type_->reference_data_host();
+  std::vector<double> cols(static_cast<std::size_t>(3 * nd));
+  for (index_t i = 0; i < nd; ++i)
+    for (int a = 0; a < 3; ++a) {
+      double v = p.center[a];
+      for (int b = 0; b < 3; ++b) v += R[a][b] * p.stretch[b] * Xr[b * nd + i];
+      cols[a * nd + i] = v;
+    }
+  for (int a = 0; a < 3; ++a)
+    thrust::copy(cols.begin() + a * nd, cols.begin() + (a + 1) * nd,
+                 state_.storage().begin() + (a * cells_ + c) * nd);
+}
+
+void Batch::set_body_force(index_t c, const std::array<double, 3>& F) {
+  require(c >= 0 && c < cells_, "batch of '" + type_->name() + "': body-force cell", c,
+          "must lie in [0, " + to_text(cells_) + ")");
+  for (int d = 0; d < 3; ++d) {
+    require(std::isfinite(F[d]), "batch of '" + type_->name() + "', cell " + to_text(c) + ": body force (dyn)", F[d],
+            "must be finite");
+    body_[d * cells_ + c] = F[d];
+  }
+}
+
+std::vector<double> Batch::positions_host() const {
+  const index_t n = type_->n_data() * 3 * cells_;
+  std::vector<double> h(static_cast<std::size_t>(n));
+  thrust::copy(state_.storage().begin(), state_.storage().begin() + n, h.begin());
+  return h;
+}
+
+void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings) {
+  const CellType& type = batch.type();
+  const ForceModel& model = type.model();
+  const std::string& name = type.name();
+  const index_t N = batch.size(), ns = type.n_sample(), nd = type.n_data(), total = N * ns;
+  const bool dissipation = model.dissipation(), bending = model.bending();
+  const index_t cols = (dissipation ? 6 : 3) * N;
+  Batch::Workspace& w = batch.workspace();
+  auto t0 = std::chrono::steady_clock::now();
+  if (timings) {
+    *timings = ForceTimings{};
+    synchronize();
+    t0 = std::chrono::steady_clock::now();
+  }
+
+  // 1. Jets at the sample sites: value and derivatives of X (and U), two products.
+  out.positions.resize(ns, 3 * N);
+  w.derivatives.resize(surface::derivative_count * ns, cols);
+  const linalg::ConstMatrixView XU = batch.state().view().block(0, 0, nd, cols);
+  if (dissipation) {
+    w.values.resize(ns, cols);
+    surface::apply_operators(type.to_sample(), XU, w.values.view(), w.derivatives.view(), w.ops);
+    linalg::copy(w.values.view().block(0, 0, ns, 3 * N), out.positions.view());
+  } else {
+    surface::apply_operators(type.to_sample(), XU, out.positions.view(), w.derivatives.view(), w.ops);
+  }
+  const double* V = dissipation ? ptr(w.values.storage()) : ptr(out.positions.storage());
+  const double* D = ptr(w.derivatives.storage());
+  const JetView xj{V, ns, D, surface::derivative_count * ns, ns, N};
+  const JetView uj{V + 3 * N * ns, ns, D + 3 * N * surface::derivative_count * ns, surface::derivative_count * ns, ns, N};
+  if (timings) timings->products = seconds_since(t0);
+
+  // 2. Bending: H - H' at the data sites, and the derivatives of H - H' at the sample sites.
+  JetView dhj{};
+  if (bending) {
+    const surface::SurfaceOperators& at_data = *type.at_data();
+    w.data_values.resize(nd, 3 * N);
+    w.data_derivatives.resize(surface::derivative_count * nd, 3 * N);
+    surface::apply_operators(at_data, batch.state().view().block(0, 0, nd, 3 * N), w.data_values.view(),
+                             w.data_derivatives.view(), w.ops);
+    const JetView xd{ptr(w.data_values.storage()), nd, ptr(w.data_derivatives.storage()),
+                     surface::derivative_count * nd, nd, N};
+    w.dH.resize(nd, N);
+    w.data_status.resize(static_cast<std::size_t>(N * nd));
+    double* dH = ptr(w.dH.storage());
+    int* dstat = ptr(w.data_status);
+    const double* H0d = model.H0_reference ? ptr(type.H0_data()) : nullptr;
+    for_each_index(N * nd, [=] RBFIB_HD (index_t k) {
+      const index_t c = k / nd, i = k % nd;
+      const surface::PointGeometry g = surface::point_geometry(xd.jet(c, i));
+      const bool ok = g.det_g > 0 && finite(g.H);
+      dstat[k] = ok ? 0 : site_degenerate_data;
+      // A constant H' drops out of the Laplacian, so only a material field is subtracted.
+      dH[i + c * nd] = ok ? g.H - (H0d ? H0d[i] : 0.0) : 0.0;
+    });
+    raise_first_bad(w.data_status, nd, name, "data");
+    w.dH_derivatives.resize(surface::derivative_count * ns, N);
+    surface::apply_operators(type.to_sample(), w.dH.view(), linalg::MatrixView{}, w.dH_derivatives.view(), w.ops);
+    dhj = JetView{nullptr, ns, ptr(w.dH_derivatives.storage()), surface::derivative_count * ns, ns, N};
+    if (timings) timings->bending = seconds_since(t0);
+  }
+
+  // 3. The site launch: every force density, F^, and per-site sums.
+  out.density.resize(ns, 3 * N);
+  out.force.resize(ns, 3 * N);
+  w.status.resize(static_cast<std::size_t>(total));
+  w.site_sums.resize(static_cast<std::size_t>(sums_per_site * total));
+  w.body.assign(batch.body_force().begin(), batch.body_force().end());
+  EnergyList energies;
+  for (const auto& e : model.elastic) energies.e[energies.n++] = e;
+  const JetView zj = type.reference_jets();
+  const JetView h0j = type.H0_jets();
+  const bool material_H0 = model.H0_reference && bending;
+  const double kappa = model.kappa, H0 = model.H0, nu = model.nu, A0 = type.reference_area();
+  const double* dA0 = ptr(type.dA0());
+  const double* body = ptr(w.body);
+  double* Fd = ptr(out.density.storage());
+  double* Fh = ptr(out.force.storage());
+  double* sums = ptr(w.site_sums);
+  int* stat = ptr(w.status);
+  for_each_index(total, [=] RBFIB_HD (index_t k) {
+    const index_t c = k / ns, i = k % ns;
+    const Jet X = xj.jet(c, i), Z = zj.jet(0, i);
+    double F[3] = {0, 0, 0}, W = 0, P = 0;
+    int status = 0;
+    for (int q = 0; q < energies.n; ++q) {
+      const mechanics::ForceAtSite r = mechanics::elastic_force_density(X, Z, energies.e[q]);
+      if (r.status) status = r.status;
+      W += r.W;
+      for (int d = 0; d < 3; ++d) F[d] += r.F[d];
+    }
+    const surface::PointGeometry g = surface::point_geometry(X), g0 = surface::point_geometry(Z);
+    if (!(g.det_g > 0) || !(g0.det_g > 0)) status = mechanics::force_degenerate_metric;
+    const double J = status ? 0.0 : sqrt(g.det_g / g0.det_g);  // dA / dA0
+    if (bending && !status) {
+      const surface::ScalarJet h0 = material_H0 ? h0j.scalar(0, i) : surface::ScalarJet{H0, 0, 0, 0, 0, 0};
+      double fb[3];
+      mechanics::bending_force_density(g, g0.det_g, surface::laplace_beltrami(X, dhj.scalar(c, i)), kappa, h0.u, fb);
+      if (material_H0) {  // tangential term of a material field H' (see mechanics/shell.hpp)
+        double grad[3];
+        surface::surface_gradient(X, h0, grad);
+        for (int d = 0; d < 3; ++d) fb[d] += -4 * kappa * J * (g.H - h0.u) * grad[d];
+      }
+      for (int d = 0; d < 3; ++d) F[d] += fb[d];
+      W += 2 * kappa * (g.H - h0.u) * (g.H - h0.u) * J;
+    }
+    if (nu > 0 && !status) {
+      const mechanics::ForceAtSite r = mechanics::dissipative_force_density(X, uj.jet(c, i), Z, nu);
+      if (r.status) status = r.status;
+      P = r.W;
+      for (int d = 0; d < 3; ++d) F[d] += r.F[d];
+    }
+    for (int d = 0; d < 3; ++d)
+      if (!finite(F[d]) && !status) status = site_non_finite;
+    stat[k] = status;
+    const double a0 = dA0[i], dA = J * a0;
+    for (int d = 0; d < 3; ++d) {
+      Fd[d * total + k] = F[d];
+      Fh[d * total + k] = F[d] * a0 + body[d * N + c] * a0 / A0;
+    }
+    // Enclosed volume and its first moments by the divergence theorem: V = (1/3) int X . n dA,
+    // int_V x_d dV = (1/2) int x_d^2 n_d dA.
+    sums[0 * total + k] = W * a0;
+    sums[1 * total + k] = P * a0;
+    sums[2 * total + k] = dA;
+    sums[3 * total + k] = (X.x[0] * g.n[0] + X.x[1] * g.n[1] + X.x[2] * g.n[2]) * dA / 3;
+    for (int d = 0; d < 3; ++d) sums[(4 + d) * total + k] = 0.5 * X.x[d] * X.x[d] * g.n[d] * dA;
+  });
+  if (timings) timings->kernels = seconds_since(t0);
+
+  // 4. The first bad site, then sums per cell.
+  raise_first_bad(w.status, ns, name, "sample");
+  w.cell_sums.resize(static_cast<std::size_t>(sums_per_site * N));
+  const auto keys = thrust::make_transform_iterator(thrust::counting_iterator<index_t>(0), CellOf{ns});
+  for (int q = 0; q < sums_per_site; ++q)
+    thrust::reduce_by_key(keys, keys + total, w.site_sums.begin() + q * total, thrust::make_discard_iterator(),
+                          w.cell_sums.begin() + q * N);
+  std::vector<double> s(w.cell_sums.size());
+  thrust::copy(w.cell_sums.begin(), w.cell_sums.end(), s.begin());
+  CellDiagnostics& cd = out.cells;
+  cd.energy.assign(s.begin(), s.begin() + N);
+  cd.dissipation.assign(s.begin() + N, s.begin() + 2 * N);
+  cd.area.assign(s.begin() + 2 * N, s.begin() + 3 * N);
+  cd.volume.assign(s.begin() + 3 * N, s.begin() + 4 * N);
+  cd.centroid.assign(static_cast<std::size_t>(N), {0, 0, 0});
+  out.energy = 0;
+  for (index_t c = 0; c < N; ++c) {
+    if (!(cd.volume[c] > 0))
+      throw NumericalError("cell type '" + name + "', cell " + to_text(c) + ": enclosed volume " + to_text(cd.volume[c]) +
+                           " cm^3 <= 0 (the surface is turned inside out)");
+    out.energy += cd.energy[c];
+    for (int d = 0; d < 3; ++d) cd.centroid[c][d] = s[(4 + d) * N + c] / cd.volume[c];
+  }
+  if (timings) timings->reductions = seconds_since(t0);
+}
+
+}  // namespace rbfib::cells

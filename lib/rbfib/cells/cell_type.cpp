@@ -1,0 +1,153 @@
+#include "rbfib/cells/cell_type.hpp"
+
+#include "rbfib/core/error.hpp"
+#include "rbfib/surface/quadrature.hpp"
+
+#include <thrust/copy.h>
+
+#include <cmath>
+
+namespace rbfib::cells {
+
+std::string ForceModel::describe() const {
+  std::string s;
+  for (const auto& e : elastic) {
+    const bool two = e.kind != mechanics::EnergyKind::surface_tension;
+    const char* names[4][2] = {{"E", "G"}, {"E", "G"}, {"Gs", "A"}, {"sigma", ""}};
+    const auto* n = names[int(e.kind)];
+    s += (s.empty() ? "" : " + ") + e.name() + " (" + n[0] + " = " + to_text(e.a) + " dyn/cm" +
+         (two ? std::string(", ") + n[1] + " = " + to_text(e.b) + (e.kind == mechanics::EnergyKind::neo_hookean_paper ? "" : " dyn/cm") : "") + ")";
+  }
+  if (bending())
+    s += (s.empty() ? "" : " + ") + std::string("bending (kappa = ") + to_text(kappa) + " erg, H' = " +
+         (H0_reference ? std::string("reference curvature") : to_text(H0) + " 1/cm") + ")";
+  if (dissipation()) s += (s.empty() ? "" : " + ") + std::string("dissipation (nu = ") + to_text(nu) + " dyn s/cm)";
+  return s.empty() ? "no forces" : s;
+}
+
+namespace {
+/// Jets of one cell (3 columns) from data-site positions, kept on the device.
+void one_cell_jets(const surface::SurfaceOperators& ops, const linalg::DeviceMatrix& X, linalg::DeviceMatrix& V,
+                   linalg::DeviceMatrix& D, index_t cols) {
+  V.resize(ops.n_sample(), cols);
+  D.resize(surface::derivative_count * ops.n_sample(), cols);
+  surface::OperatorWorkspace work;
+  surface::apply_operators(ops, X.view(), V.view(), D.view(), work);
+}
+
+/// Host jets of a one-cell JetView whose memory was downloaded.
+std::vector<surface::Jet> host_jets(const linalg::DeviceMatrix& V, const linalg::DeviceMatrix& D) {
+  const std::vector<double> v = V.to_host(), d = D.to_host();
+  const index_t n = V.rows();
+  const surface::JetView view{v.data(), n, d.data(), surface::derivative_count * n, n, 1};
+  std::vector<surface::Jet> jets(static_cast<std::size_t>(n));
+  for (index_t i = 0; i < n; ++i) jets[i] = view.jet(0, i);
+  return jets;
+}
+}  // namespace
+
+CellType::CellType(CellTypeSpec spec) : spec_(std::move(spec)) {
+  const std::string& nm = spec_.name;
+  require(!nm.empty(), "cell type name", "''", "must not be empty");
+  require(bool(spec_.shape.position), "cell type '" + nm + "' reference shape", "none", "must be given");
+  const ForceModel& m = spec_.model;
+  require(int(m.elastic.size()) <= ForceModel::max_elastic_energies, "cell type '" + nm + "' elastic energies",
+          m.elastic.size(), "at most " + to_text(ForceModel::max_elastic_energies));
+  require(m.kappa >= 0, "cell type '" + nm + "' bending modulus kappa (erg)", m.kappa, "must be >= 0");
+  require(m.nu >= 0, "cell type '" + nm + "' membrane viscosity nu (dyn s/cm)", m.nu, "must be >= 0");
+  require(std::isfinite(m.H0), "cell type '" + nm + "' spontaneous curvature H' (1/cm)", m.H0, "must be finite");
+  require(n_sample() > 0, "cell type '" + nm + "' sample sites", n_sample(), "must be > 0");
+
+  // 1. Operators (host build, one upload).
+  if (spec_.interpolant == Interpolant::spherical_harmonics) {
+    to_sample_ = surface::sh_operators(spec_.data_sites, spec_.sample_sites, spec_.sh_degree);
+    if (m.bending()) at_data_ = surface::sh_operators(spec_.data_sites, spec_.data_sites, spec_.sh_degree);
+  } else {
+    to_sample_ = surface::rbf_operators(spec_.data_sites, spec_.sample_sites, spec_.basis);
+    if (m.bending()) at_data_ = surface::rbf_operators(spec_.data_sites, spec_.data_sites, spec_.basis);
+  }
+
+  // 2. Reference configuration at the data sites, n_d x 3.
+  const index_t nd = n_data(), ns = n_sample();
+  reference_host_.assign(static_cast<std::size_t>(3 * nd), 0.0);
+  for (index_t i = 0; i < nd; ++i) {
+    double x[3];
+    spec_.shape.position(spec_.data_sites.lambda[i], spec_.data_sites.theta[i], x);
+    for (int d = 0; d < 3; ++d) {
+      require(std::isfinite(x[d]), "cell type '" + nm + "' reference shape at data site " + to_text(i), x[d],
+              "must be finite");
+      reference_host_[d * nd + i] = x[d];
+    }
+  }
+  reference_data_ = linalg::DeviceMatrix::from_host(nd, 3, reference_host_.data());
+
+  // 3. Reference jets Z at the sample sites, and the weights of eq. (51).
+  one_cell_jets(*to_sample_, reference_data_, Z_value_, Z_derivatives_, 3);
+  const std::vector<surface::Jet> Z = reference_jets_host();
+  std::vector<double> w = spec_.sphere_weights;
+  if (w.empty()) w = surface::rbf_sphere_weights(spec_.sample_sites, 1).w;
+  require(static_cast<index_t>(w.size()) == ns, "cell type '" + nm + "' sphere weights", w.size(),
+          "must number the sample sites (" + to_text(ns) + ")");
+  std::vector<double> det0(static_cast<std::size_t>(ns));
+  for (index_t i = 0; i < ns; ++i) {
+    const surface::PointGeometry g = surface::point_geometry(Z[i]);
+    if (!(g.det_g > 0))
+      throw NumericalError("cell type '" + nm + "': reference surface degenerate at sample site " + to_text(i) +
+                           " (det G0 = " + to_text(g.det_g) + ")");
+    det0[i] = g.det_g;
+  }
+  const std::vector<double> dA0 = surface::reference_shape_weights(spec_.sample_sites, w, det0);
+  for (index_t i = 0; i < ns; ++i) {
+    const surface::PointGeometry g = surface::point_geometry(Z[i]);
+    area0_ += dA0[i];
+    volume0_ += surface::dot3(Z[i].x, g.n) * dA0[i] / 3;
+  }
+  dA0_.assign(dA0.begin(), dA0.end());
+
+  // 4. Material spontaneous curvature: H of the reference at the data sites, and its jets.
+  if (m.bending() && m.H0_reference) {
+    linalg::DeviceMatrix V, D;
+    one_cell_jets(*at_data_, reference_data_, V, D, 3);
+    const std::vector<surface::Jet> Zd = host_jets(V, D);
+    std::vector<double> H(static_cast<std::size_t>(nd));
+    for (index_t i = 0; i < nd; ++i) H[i] = surface::point_geometry(Zd[i]).H;
+    H0_data_.assign(H.begin(), H.end());
+    const linalg::DeviceMatrix Hd = linalg::DeviceMatrix::from_host(nd, 1, H.data());
+    one_cell_jets(*to_sample_, Hd, H0_value_, H0_derivatives_, 1);
+  }
+}
+
+surface::JetView CellType::reference_jets() const {
+  const index_t ns = n_sample();
+  return {ptr(Z_value_.storage()), ns, ptr(Z_derivatives_.storage()), surface::derivative_count * ns, ns, 1};
+}
+
+std::vector<surface::Jet> CellType::reference_jets_host() const { return host_jets(Z_value_, Z_derivatives_); }
+
+std::vector<double> CellType::dA0_host() const {
+  std::vector<double> h(dA0_.size());
+  thrust::copy(dA0_.begin(), dA0_.end(), h.begin());
+  return h;
+}
+
+surface::JetView CellType::H0_jets() const {
+  const index_t ns = n_sample();
+  if (H0_value_.empty()) return {};
+  return {ptr(H0_value_.storage()), ns, ptr(H0_derivatives_.storage()), surface::derivative_count * ns, ns, 1};
+}
+
+std::size_t CellType::bytes() const {
+  std::size_t b = to_sample_->bytes() + (at_data_ ? at_data_->bytes() : 0);
+  b += reference_data_.bytes() + Z_value_.bytes() + Z_derivatives_.bytes() + H0_value_.bytes() + H0_derivatives_.bytes();
+  b += (dA0_.size() + H0_data_.size()) * sizeof(double);
+  return b;
+}
+
+std::string CellType::describe() const {
+  return "cell type '" + name() + "': " + spec_.shape.name + "; " + to_text(n_data()) + " data sites, " +
+         to_text(n_sample()) + " sample sites; " + to_sample_->description + "\n  forces: " + model().describe() +
+         "\n  reference area " + to_text(area0_ * 1e8) + " um^2, volume " + to_text(volume0_ * 1e12) +
+         " um^3; device memory " + to_text(double(bytes()) / 1048576.0) + " MiB";
+}
+
+}  // namespace rbfib::cells
