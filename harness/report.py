@@ -125,6 +125,7 @@ def render(meta, ref, results, outcome, out_dir, run_info):
     L.append(f"Ran on {prov.get('cpu', '?')} ({prov.get('threads', '?')} threads of {prov.get('hardware_threads', '?')}), "
              f"backend {prov.get('backend', '?')}, {prov.get('compiler', '?')}, commit {run_info.get('commit', '?')}, "
              f"{run_info.get('date', '?')}; OMP_WAIT_POLICY={run_info.get('omp_wait_policy', 'unset')}; "
+             f"OPENBLAS_CORETYPE={run_info.get('openblas_coretype', 'not recorded')}; "
              f"driver wall time {run_info.get('seconds', 0):.1f} s.")
     L.append("")
     L += ["## Checks", "", markdown_table(["check", "source", "result", "detail"],

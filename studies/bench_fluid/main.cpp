@@ -42,21 +42,6 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/// Shortest wall time of `repeats` calls (STREAM's convention for bandwidth: the best run is the one
-/// least disturbed by other work on the machine).
-double best_seconds(int repeats, const std::function<void()>& fn) {
-  double best = 1e300;
-  for (int r = 0; r < repeats; ++r) best = std::min(best, median_seconds(1, fn));
-  return best;
-}
-
-struct Triad {
-  const double *b, *c;
-  double s;
-  double* a;
-  RBFIB_HD void operator()(index_t i) const { a[i] = b[i] + s * c[i]; }
-};
-
 struct GridSpec {
   std::string name;
   MacGrid grid;
@@ -116,13 +101,8 @@ int main(int argc, char** argv) {
 #endif
     // 1. triad
     const index_t nt = index_t(1) << 24;
-    dvec a(nt, 0.0), b(nt, 1.0), c(nt, 2.0);
-    for_each_index(nt, Triad{ptr(b), ptr(c), 3.0, ptr(a)});  // touch
-    const double t_triad = best_seconds(10, [&] { for_each_index(nt, Triad{ptr(b), ptr(c), 3.0, ptr(a)}); });
+    const double t_triad = triad_seconds(nt);
     const double bw_triad = 3.0 * 8.0 * double(nt) / t_triad;
-    a.clear(); a.shrink_to_fit();
-    b.clear(); b.shrink_to_fit();
-    c.clear(); c.shrink_to_fit();
     triad["rows"].push(row({threads, t_triad, bw_triad / 1e9}));
     log(opt, "threads " + std::to_string(threads) + ": triad " + std::to_string(bw_triad / 1e9) + " GB/s");
 

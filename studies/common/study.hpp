@@ -39,6 +39,14 @@ void log(const Options& opt, const std::string& message);
 /// Median wall time in seconds of `repeats` calls of fn.
 double median_seconds(int repeats, const std::function<void()>& fn);
 
+/// Shortest wall time in seconds of `repeats` calls of fn (the STREAM convention for bandwidths).
+double best_seconds(int repeats, const std::function<void()>& fn);
+
+/// Seconds of one triad a = b + 3 c over n doubles per array on the execution device (best of
+/// 10, after a touch); the bandwidth is 3 x 8 n bytes over it. n = 2^24 (384 MiB in all) is out of
+/// every cache.
+double triad_seconds(long long n);
+
 /// The path of a file in the source tree (stored inputs such as reference/point_sets/...):
 /// $RBFIB_ROOT/relative when that variable is set, else relative to the configured source tree.
 std::string source_path(const std::string& relative);

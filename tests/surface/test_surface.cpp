@@ -474,3 +474,36 @@ TEST(Quadrature, ReferenceShapeWeightsIntegrateTheRedCellArea) {
   EXPECT_GT(A_ref, 1.2e-6);  // ~ 135 um^2: a red cell's area is 130-140 um^2
   EXPECT_LT(A_ref, 1.5e-6);
 }
+
+TEST(Interpolation, RowRangesOfTheOperatorsEqualTheirRows) {
+  // apply_operators_rows on [row0, row0 + rows) equals those rows of apply_operators (one product
+  // for the values, a strided batch of five for the derivatives), for an assembled RBF set and a
+  // factored harmonic set; select_sample_sites makes a set whose products give the same rows.
+  const SphereSites data = bauer_spiral(64), sample = bauer_spiral(150);
+  const MaxDetResult md = max_determinant_points(5);
+  for (const auto& ops : {rbf_operators(data, sample, PhsBasis{7, 3}), sh_operators(md.sites, sample, 5)}) {
+    const index_t nd = ops->n_data(), ns = ops->n_sample(), cols = 4, row0 = 37, rows = 51;
+    std::vector<double> F(static_cast<std::size_t>(nd * cols));
+    for (std::size_t k = 0; k < F.size(); ++k) F[k] = std::sin(0.7 * double(k)) + 0.1 * double(k % 5);
+    const linalg::DeviceMatrix Fd = linalg::DeviceMatrix::from_host(nd, cols, F.data());
+    OperatorWorkspace work;
+    linalg::DeviceMatrix V(ns, cols), D(5 * ns, cols), v(rows, cols), d(5 * rows, cols), v2(rows, cols), d2(5 * rows, cols);
+    apply_operators(*ops, Fd.view(), V.view(), D.view(), work);
+    apply_operators_rows(*ops, Fd.view(), row0, rows, v.view(), d.view(), work);
+    const auto sel = select_sample_sites(*ops, row0, rows);
+    apply_operators(*sel, Fd.view(), v2.view(), d2.view(), work);
+    const auto Vh = V.to_host(), Dh = D.to_host(), vh = v.to_host(), dh = d.to_host(), v2h = v2.to_host(), d2h = d2.to_host();
+    double scale = 0;
+    for (double x : Dh) scale = std::max(scale, std::abs(x));
+    for (index_t c = 0; c < cols; ++c)
+      for (index_t i = 0; i < rows; ++i) {
+        EXPECT_NEAR(vh[i + c * rows], Vh[row0 + i + c * ns], 1e-13 * scale);
+        EXPECT_NEAR(v2h[i + c * rows], Vh[row0 + i + c * ns], 1e-13 * scale);
+        for (int q = 0; q < 5; ++q) {
+          EXPECT_NEAR(dh[q * rows + i + c * 5 * rows], Dh[q * ns + row0 + i + c * 5 * ns], 1e-13 * scale);
+          EXPECT_NEAR(d2h[q * rows + i + c * 5 * rows], Dh[q * ns + row0 + i + c * 5 * ns], 1e-13 * scale);
+        }
+      }
+    EXPECT_THROW(apply_operators_rows(*ops, Fd.view(), ns - 2, 5, linalg::MatrixView{}, linalg::MatrixView{}, work), InputError);
+  }
+}

@@ -5,10 +5,6 @@
 
 #include <thrust/copy.h>
 #include <thrust/find.h>
-#include <thrust/iterator/counting_iterator.h>
-#include <thrust/iterator/discard_iterator.h>
-#include <thrust/iterator/transform_iterator.h>
-#include <thrust/reduce.h>
 
 #include <chrono>
 #include <cmath>
@@ -42,11 +38,6 @@ RBFIB_HD inline bool finite(double v) { return (v - v) == 0.0; }
 
 /// Number of per-site contributions reduced per cell.
 constexpr int sums_per_site = 7;  // energy, dissipation, area, volume, 3 volume moments
-
-struct CellOf {
-  index_t n;
-  RBFIB_HD index_t operator()(index_t k) const { return k / n; }
-};
 
 /// Throws the named error for the first site with a nonzero status, if any.
 void raise_first_bad(const device_vector<int>& status, index_t per_cell, const std::string& type, const char* where) {
@@ -140,33 +131,26 @@ void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings) 
     t0 = std::chrono::steady_clock::now();
   }
 
-  // 1. Jets at the sample sites: value and derivatives of X (and U), two products.
+  // 1. Jets: value and derivatives of X (and U) at the sample sites, and with bending at the data
+  //    sites too (rows n_s .. of the type's operators): two products.
+  const index_t nj = type.jet_sites();
+  const index_t ldd = surface::derivative_count * nj;
+  w.values.resize(nj, cols);
+  w.derivatives.resize(ldd, cols);
+  surface::apply_operators(type.operators(), batch.state().view().block(0, 0, nd, cols), w.values.view(),
+                           w.derivatives.view(), w.ops);
   out.positions.resize(ns, 3 * N);
-  w.derivatives.resize(surface::derivative_count * ns, cols);
-  const linalg::ConstMatrixView XU = batch.state().view().block(0, 0, nd, cols);
-  if (dissipation) {
-    w.values.resize(ns, cols);
-    surface::apply_operators(type.to_sample(), XU, w.values.view(), w.derivatives.view(), w.ops);
-    linalg::copy(w.values.view().block(0, 0, ns, 3 * N), out.positions.view());
-  } else {
-    surface::apply_operators(type.to_sample(), XU, out.positions.view(), w.derivatives.view(), w.ops);
-  }
-  const double* V = dissipation ? ptr(w.values.storage()) : ptr(out.positions.storage());
+  linalg::copy(w.values.view().block(0, 0, ns, 3 * N), out.positions.view());
+  const double* V = ptr(w.values.storage());
   const double* D = ptr(w.derivatives.storage());
-  const JetView xj{V, ns, D, surface::derivative_count * ns, ns, N};
-  const JetView uj{V + 3 * N * ns, ns, D + 3 * N * surface::derivative_count * ns, surface::derivative_count * ns, ns, N};
-  if (timings) timings->products = seconds_since(t0);
+  const JetView xj{V, nj, D, ldd, nj, N};
+  const JetView uj{V + 3 * N * nj, nj, D + 3 * N * ldd, ldd, nj, N};
+  if (timings) timings->jets = seconds_since(t0);
 
   // 2. Bending: H - H' at the data sites, and the derivatives of H - H' at the sample sites.
   JetView dhj{};
   if (bending) {
-    const surface::SurfaceOperators& at_data = *type.at_data();
-    w.data_values.resize(nd, 3 * N);
-    w.data_derivatives.resize(surface::derivative_count * nd, 3 * N);
-    surface::apply_operators(at_data, batch.state().view().block(0, 0, nd, 3 * N), w.data_values.view(),
-                             w.data_derivatives.view(), w.ops);
-    const JetView xd{ptr(w.data_values.storage()), nd, ptr(w.data_derivatives.storage()),
-                     surface::derivative_count * nd, nd, N};
+    const JetView xd{V + ns, nj, D + ns, ldd, nj, N};  // the data-site rows
     w.dH.resize(nd, N);
     w.data_status.resize(static_cast<std::size_t>(N * nd));
     double* dH = ptr(w.dH.storage());
@@ -181,10 +165,11 @@ void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings) 
       dH[i + c * nd] = ok ? g.H - (H0d ? H0d[i] : 0.0) : 0.0;
     });
     raise_first_bad(w.data_status, nd, name, "data");
+    if (timings) timings->bending_kernel = seconds_since(t0);
     w.dH_derivatives.resize(surface::derivative_count * ns, N);
-    surface::apply_operators(type.to_sample(), w.dH.view(), linalg::MatrixView{}, w.dH_derivatives.view(), w.ops);
+    surface::apply_operators_rows(type.operators(), w.dH.view(), 0, ns, linalg::MatrixView{}, w.dH_derivatives.view(), w.ops);
     dhj = JetView{nullptr, ns, ptr(w.dH_derivatives.storage()), surface::derivative_count * ns, ns, N};
-    if (timings) timings->bending = seconds_since(t0);
+    if (timings) timings->bending_products = seconds_since(t0);
   }
 
   // 3. The site launch: every force density, F^, and per-site sums.
@@ -257,11 +242,13 @@ void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings) 
 
   // 4. The first bad site, then sums per cell.
   raise_first_bad(w.status, ns, name, "sample");
+  // The per-site sums are an n_s x 7N matrix (column q N + c: quantity q of cell c), so the
+  // per-cell sums are one product with a vector of ones.
   w.cell_sums.resize(static_cast<std::size_t>(sums_per_site * N));
-  const auto keys = thrust::make_transform_iterator(thrust::counting_iterator<index_t>(0), CellOf{ns});
-  for (int q = 0; q < sums_per_site; ++q)
-    thrust::reduce_by_key(keys, keys + total, w.site_sums.begin() + q * total, thrust::make_discard_iterator(),
-                          w.cell_sums.begin() + q * N);
+  if (static_cast<index_t>(w.ones.size()) != ns) w.ones.assign(static_cast<std::size_t>(ns), 1.0);
+  linalg::gemm(linalg::Op::transpose, linalg::Op::none, 1.0, linalg::ConstMatrixView{ptr(w.site_sums), ns, sums_per_site * N, ns},
+               linalg::ConstMatrixView{ptr(w.ones), ns, 1, ns}, 0.0,
+               linalg::MatrixView{ptr(w.cell_sums), sums_per_site * N, 1, sums_per_site * N});
   std::vector<double> s(w.cell_sums.size());
   thrust::copy(w.cell_sums.begin(), w.cell_sums.end(), s.begin());
   CellDiagnostics& cd = out.cells;

@@ -5,10 +5,11 @@
 // velocities U (columns 3N + d N + c) at the data sites, in cm and cm/s.
 //
 // compute_forces, for every cell at once:
-//   1. jets at the sample sites: value X (n_s x 3N, the positions spread from) and derivatives X
-//      (5 n_s x 3N), two products (with U as 3N more columns when the type has dissipation);
-//   2. bending: jets of X at the data sites (data -> data operators), H - H' there, and the
-//      derivatives of H - H' at the sample sites (one more product, N columns);
+//   1. jets at the sample sites, and with bending at the data sites too (the type's operators
+//      hold both): value X and derivatives X, two products (with U as 3N more columns when the
+//      type has dissipation); the sample-site values are the positions spread from;
+//   2. bending: H - H' at the data sites, and the derivatives of H - H' at the sample sites (one
+//      more product, N columns);
 //   3. one launch over the N n_s sample sites: the force density of every energy of the type's
 //      model (eq. 35 for W(I1, I2), eq. 84 / 2.13 for bending, eq. 2.14 for dissipation), per unit
 //      reference area, the force F^ = F dA0 (eq. 52) plus each cell's body force spread in
@@ -46,11 +47,14 @@ struct CellDiagnostics {
 /// Wall time of the phases of one force call (s), measured only when asked for (it
 /// synchronizes the device between phases).
 struct ForceTimings {
-  double products = 0;   ///< position and velocity jets at the sample sites (dense products)
-  double bending = 0;    ///< bending's data-site jets, H kernel and the jets of H - H'
-  double kernels = 0;    ///< the site launch: geometry, every force density, F^
-  double reductions = 0; ///< per-cell sums and the status reduction
-  double total() const { return products + bending + kernels + reductions; }
+  double jets = 0;              ///< products: position (and velocity) jets at the sample (and data) sites
+  double bending_products = 0;  ///< products: the derivatives of H - H' at the sample sites
+  double bending_kernel = 0;    ///< H - H' at the data sites and its status reduction
+  double kernels = 0;           ///< the site launch: geometry, every force density, F^
+  double reductions = 0;        ///< the status reduction and the per-cell sums
+  double products() const { return jets + bending_products; }
+  double bending() const { return bending_products + bending_kernel; }
+  double total() const { return jets + bending_products + bending_kernel + kernels + reductions; }
 };
 
 /// The output of a force call, in the sample-site layout n_s x 3N (docs/math.md).
@@ -88,13 +92,13 @@ class Batch {
 
   /// Workspace of the force call, reused between calls (no allocation after the first).
   struct Workspace {
-    linalg::DeviceMatrix values, derivatives, data_values, data_derivatives, dH, dH_derivatives;
+    linalg::DeviceMatrix values, derivatives, dH, dH_derivatives;
     surface::OperatorWorkspace ops;
     device_vector<int> status, data_status;
     dvec body;
     dvec site_sums;       // per site: 7 contributions (energy, dissipation, area, volume, 3 moments)
     dvec cell_sums;       // per cell
-    device_vector<index_t> cell_keys;
+    dvec ones;            // n_s ones: the per-cell sums are S^T 1
   };
   Workspace& workspace() const { return work_; }
 

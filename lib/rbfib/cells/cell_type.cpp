@@ -26,13 +26,13 @@ std::string ForceModel::describe() const {
 }
 
 namespace {
-/// Jets of one cell (3 columns) from data-site positions, kept on the device.
-void one_cell_jets(const surface::SurfaceOperators& ops, const linalg::DeviceMatrix& X, linalg::DeviceMatrix& V,
-                   linalg::DeviceMatrix& D, index_t cols) {
-  V.resize(ops.n_sample(), cols);
-  D.resize(surface::derivative_count * ops.n_sample(), cols);
+/// Jets of one cell (`cols` columns of X) at the operator rows [row0, row0 + rows), on the device.
+void one_cell_jets(const surface::SurfaceOperators& ops, const linalg::DeviceMatrix& X, index_t row0, index_t rows,
+                   linalg::DeviceMatrix& V, linalg::DeviceMatrix& D) {
+  V.resize(rows, X.cols());
+  D.resize(surface::derivative_count * rows, X.cols());
   surface::OperatorWorkspace work;
-  surface::apply_operators(ops, X.view(), V.view(), D.view(), work);
+  surface::apply_operators_rows(ops, X.view(), row0, rows, V.view(), D.view(), work);
 }
 
 /// Host jets of a one-cell JetView whose memory was downloaded.
@@ -58,17 +58,19 @@ CellType::CellType(CellTypeSpec spec) : spec_(std::move(spec)) {
   require(std::isfinite(m.H0), "cell type '" + nm + "' spontaneous curvature H' (1/cm)", m.H0, "must be finite");
   require(n_sample() > 0, "cell type '" + nm + "' sample sites", n_sample(), "must be > 0");
 
-  // 1. Operators (host build, one upload).
-  if (spec_.interpolant == Interpolant::spherical_harmonics) {
-    to_sample_ = surface::sh_operators(spec_.data_sites, spec_.sample_sites, spec_.sh_degree);
-    if (m.bending()) at_data_ = surface::sh_operators(spec_.data_sites, spec_.data_sites, spec_.sh_degree);
-  } else {
-    to_sample_ = surface::rbf_operators(spec_.data_sites, spec_.sample_sites, spec_.basis);
-    if (m.bending()) at_data_ = surface::rbf_operators(spec_.data_sites, spec_.data_sites, spec_.basis);
+  // 1. Operators (host build, one upload): sample sites, then the data sites with bending.
+  const index_t nd = n_data(), ns = n_sample();
+  surface::SphereSites eval = spec_.sample_sites;
+  if (m.bending()) {
+    eval.lambda.insert(eval.lambda.end(), spec_.data_sites.lambda.begin(), spec_.data_sites.lambda.end());
+    eval.theta.insert(eval.theta.end(), spec_.data_sites.theta.begin(), spec_.data_sites.theta.end());
   }
+  if (spec_.interpolant == Interpolant::spherical_harmonics)
+    operators_ = surface::sh_operators(spec_.data_sites, eval, spec_.sh_degree);
+  else
+    operators_ = surface::rbf_operators(spec_.data_sites, eval, spec_.basis);
 
   // 2. Reference configuration at the data sites, n_d x 3.
-  const index_t nd = n_data(), ns = n_sample();
   reference_host_.assign(static_cast<std::size_t>(3 * nd), 0.0);
   for (index_t i = 0; i < nd; ++i) {
     double x[3];
@@ -82,7 +84,7 @@ CellType::CellType(CellTypeSpec spec) : spec_(std::move(spec)) {
   reference_data_ = linalg::DeviceMatrix::from_host(nd, 3, reference_host_.data());
 
   // 3. Reference jets Z at the sample sites, and the weights of eq. (51).
-  one_cell_jets(*to_sample_, reference_data_, Z_value_, Z_derivatives_, 3);
+  one_cell_jets(*operators_, reference_data_, 0, ns, Z_value_, Z_derivatives_);
   const std::vector<surface::Jet> Z = reference_jets_host();
   std::vector<double> w = spec_.sphere_weights;
   if (w.empty()) w = surface::rbf_sphere_weights(spec_.sample_sites, 1).w;
@@ -107,14 +109,26 @@ CellType::CellType(CellTypeSpec spec) : spec_(std::move(spec)) {
   // 4. Material spontaneous curvature: H of the reference at the data sites, and its jets.
   if (m.bending() && m.H0_reference) {
     linalg::DeviceMatrix V, D;
-    one_cell_jets(*at_data_, reference_data_, V, D, 3);
+    one_cell_jets(*operators_, reference_data_, ns, nd, V, D);
     const std::vector<surface::Jet> Zd = host_jets(V, D);
     std::vector<double> H(static_cast<std::size_t>(nd));
     for (index_t i = 0; i < nd; ++i) H[i] = surface::point_geometry(Zd[i]).H;
     H0_data_.assign(H.begin(), H.end());
     const linalg::DeviceMatrix Hd = linalg::DeviceMatrix::from_host(nd, 1, H.data());
-    one_cell_jets(*to_sample_, Hd, H0_value_, H0_derivatives_, 1);
+    one_cell_jets(*operators_, Hd, 0, ns, H0_value_, H0_derivatives_);
   }
+}
+
+const surface::SurfaceOperators& CellType::to_sample() const {
+  if (!model().bending()) return *operators_;
+  if (!to_sample_) to_sample_ = surface::select_sample_sites(*operators_, 0, n_sample());
+  return *to_sample_;
+}
+
+const surface::SurfaceOperators* CellType::at_data() const {
+  if (!model().bending()) return nullptr;
+  if (!at_data_) at_data_ = surface::select_sample_sites(*operators_, n_sample(), n_data());
+  return at_data_.get();
 }
 
 surface::JetView CellType::reference_jets() const {
@@ -137,7 +151,7 @@ surface::JetView CellType::H0_jets() const {
 }
 
 std::size_t CellType::bytes() const {
-  std::size_t b = to_sample_->bytes() + (at_data_ ? at_data_->bytes() : 0);
+  std::size_t b = operators_->bytes();
   b += reference_data_.bytes() + Z_value_.bytes() + Z_derivatives_.bytes() + H0_value_.bytes() + H0_derivatives_.bytes();
   b += (dA0_.size() + H0_data_.size()) * sizeof(double);
   return b;
@@ -145,7 +159,7 @@ std::size_t CellType::bytes() const {
 
 std::string CellType::describe() const {
   return "cell type '" + name() + "': " + spec_.shape.name + "; " + to_text(n_data()) + " data sites, " +
-         to_text(n_sample()) + " sample sites; " + to_sample_->description + "\n  forces: " + model().describe() +
+         to_text(n_sample()) + " sample sites; " + operators_->description + "\n  forces: " + model().describe() +
          "\n  reference area " + to_text(area0_ * 1e8) + " um^2, volume " + to_text(volume0_ * 1e12) +
          " um^3; device memory " + to_text(double(bytes()) / 1048576.0) + " MiB";
 }

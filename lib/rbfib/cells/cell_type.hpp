@@ -2,7 +2,9 @@
 // A cell type: everything the cells of one kind share (dissertation Secs. 2.2-2.4).
 // - a reference shape (shapes.hpp) sampled at n_d data sites: the reference configuration;
 // - surface operators from the data sites to n_s sample sites (RBF, eqs. 2.15-2.19, or factored
-//   spherical harmonics, paper eqs. 85-86), built once on the host and uploaded;
+//   spherical harmonics, paper eqs. 85-86), built once on the host and uploaded; with bending the
+//   same operator set also evaluates at the n_d data sites (rows n_s .. n_s + n_d - 1), so that
+//   one product gives the jets at both (bending needs H at the data sites);
 // - reference jets Z at the sample sites, from the same operators applied to the reference data
 //   (so that a rigid motion of the reference carries no elastic force beyond rounding);
 // - reference area weights dA0 (eq. 51 with the sphere weights of eq. 2.22, phi = r, unless
@@ -69,9 +71,15 @@ class CellType {
   index_t n_data() const { return spec_.data_sites.size(); }
   index_t n_sample() const { return spec_.sample_sites.size(); }
 
-  const surface::SurfaceOperators& to_sample() const { return *to_sample_; }
-  /// Data -> data operators (for H at the data sites); null without bending.
-  const surface::SurfaceOperators* at_data() const { return at_data_.get(); }
+  /// The type's operators: the sample sites, then (with bending) the data sites.
+  const surface::SurfaceOperators& operators() const { return *operators_; }
+  /// Rows of operators(): n_s, plus n_d with bending.
+  index_t jet_sites() const { return operators_->n_sample(); }
+  /// Data -> sample and data -> data operators as sets of their own, for the per-cell host path
+  /// (mechanics/shell.hpp); copies of row blocks of operators(), made on first use. at_data() is
+  /// null without bending.
+  const surface::SurfaceOperators& to_sample() const;
+  const surface::SurfaceOperators* at_data() const;
 
   /// Reference positions at the data sites, n_d x 3 (device and host).
   const linalg::DeviceMatrix& reference_data() const { return reference_data_; }
@@ -97,7 +105,8 @@ class CellType {
 
  private:
   CellTypeSpec spec_;
-  std::shared_ptr<const surface::SurfaceOperators> to_sample_, at_data_;
+  std::shared_ptr<const surface::SurfaceOperators> operators_;
+  mutable std::shared_ptr<const surface::SurfaceOperators> to_sample_, at_data_;  // made on first use
   linalg::DeviceMatrix reference_data_, Z_value_, Z_derivatives_, H0_value_, H0_derivatives_;
   std::vector<double> reference_host_;
   dvec dA0_, H0_data_;

@@ -73,20 +73,57 @@ std::shared_ptr<const SurfaceOperators> sh_operators(const SphereSites& interp, 
   return ops;
 }
 
-void apply_operators(const SurfaceOperators& ops, linalg::ConstMatrixView F, linalg::MatrixView value,
-                     linalg::MatrixView derivatives, OperatorWorkspace& work) {
+namespace {
+/// The columns the operators act on: F itself, or the coefficients Y^{-1} F of a factored set.
+linalg::ConstMatrixView operand(const SurfaceOperators& ops, linalg::ConstMatrixView F, OperatorWorkspace& work) {
   require(F.rows == ops.n_data(), "surface operators: rows of the data-site fields", F.rows,
           "must equal the number of data sites " + to_text(ops.n_data()));
-  linalg::ConstMatrixView in = F;
-  if (ops.factored()) {  // c = Y^{-1} F by the stored LU factors
-    work.coefficients.resize(F.rows, F.cols);
-    linalg::copy(F, work.coefficients.view());
-    linalg::lu_solve(ops.lu, linalg::Op::none, work.coefficients.view());
-    in = work.coefficients.view();
-  }
+  if (!ops.factored()) return F;
+  work.coefficients.resize(F.rows, F.cols);  // c = Y^{-1} F by the stored LU factors
+  linalg::copy(F, work.coefficients.view());
+  linalg::lu_solve(ops.lu, linalg::Op::none, work.coefficients.view());
+  return work.coefficients.view();
+}
+}  // namespace
+
+void apply_operators(const SurfaceOperators& ops, linalg::ConstMatrixView F, linalg::MatrixView value,
+                     linalg::MatrixView derivatives, OperatorWorkspace& work) {
+  const linalg::ConstMatrixView in = operand(ops, F, work);
   if (value.rows > 0) linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, ops.value.view(), in, 0.0, value);
   if (derivatives.rows > 0)
     linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, ops.derivatives.view(), in, 0.0, derivatives);
+}
+
+void apply_operators_rows(const SurfaceOperators& ops, linalg::ConstMatrixView F, index_t row0, index_t rows,
+                          linalg::MatrixView value, linalg::MatrixView derivatives, OperatorWorkspace& work) {
+  const index_t ns = ops.n_sample();
+  require(row0 >= 0 && rows >= 0 && row0 + rows <= ns, "surface operators: sample-site range",
+          "[" + to_text(row0) + ", " + to_text(row0 + rows) + ")", "must lie in [0, " + to_text(ns) + ")");
+  require(derivatives.rows == 0 || derivatives.rows == derivative_count * rows, "surface operators: derivative rows",
+          derivatives.rows, "must be 5 x " + to_text(rows));
+  const linalg::ConstMatrixView in = operand(ops, F, work);
+  const linalg::ConstMatrixView V = ops.value.view(), D = ops.derivatives.view();
+  if (value.rows > 0) linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, V.block(row0, 0, rows, V.cols), in, 0.0, value);
+  if (derivatives.rows > 0)  // derivative q: operator rows q ns + row0 .. , output rows q rows ..
+    linalg::gemm_strided_batched(linalg::Op::none, linalg::Op::none, 1.0, D.block(row0, 0, rows, D.cols), ns, in, 0, 0.0,
+                                 derivatives.block(0, 0, rows, derivatives.cols), rows, derivative_count);
+}
+
+std::shared_ptr<const SurfaceOperators> select_sample_sites(const SurfaceOperators& ops, index_t row0, index_t rows) {
+  const index_t ns = ops.n_sample(), k = ops.value.cols();
+  require(row0 >= 0 && rows > 0 && row0 + rows <= ns, "surface operators: selected sample sites",
+          "[" + to_text(row0) + ", " + to_text(row0 + rows) + ")", "must lie in [0, " + to_text(ns) + ")");
+  auto out = std::make_shared<SurfaceOperators>();
+  out->value.resize(rows, k);
+  out->derivatives.resize(derivative_count * rows, k);
+  linalg::copy(ops.value.view().block(row0, 0, rows, k), out->value.view());
+  for (int q = 0; q < derivative_count; ++q)
+    linalg::copy(ops.derivatives.view().block(q * ns + row0, 0, rows, k), out->derivatives.view().block(q * rows, 0, rows, k));
+  out->lu = ops.lu;
+  out->data_sites = ops.data_sites;
+  out->condition_estimate = ops.condition_estimate;
+  out->description = ops.description + " (sample sites " + to_text(row0) + " .. " + to_text(row0 + rows - 1) + ")";
+  return out;
 }
 
 void apply_value_transpose(const SurfaceOperators& ops, linalg::ConstMatrixView F, linalg::MatrixView G) {

@@ -76,6 +76,16 @@ struct OperatorWorkspace {
 void apply_operators(const SurfaceOperators& ops, linalg::ConstMatrixView F, linalg::MatrixView value,
                      linalg::MatrixView derivatives, OperatorWorkspace& work);
 
+/// The same for the sample sites [row0, row0 + rows) only: value is rows x cols and derivatives
+/// 5 rows x cols (derivative q of site row0 + i in row q rows + i), by one product for the values
+/// and one strided batch of five for the derivatives.
+void apply_operators_rows(const SurfaceOperators& ops, linalg::ConstMatrixView F, index_t row0, index_t rows,
+                          linalg::MatrixView value, linalg::MatrixView derivatives, OperatorWorkspace& work);
+
+/// The operators of the sample sites [row0, row0 + rows) as a set of their own (device copies;
+/// the LU factors of a factored set are copied too).
+std::shared_ptr<const SurfaceOperators> select_sample_sites(const SurfaceOperators& ops, index_t row0, index_t rows);
+
 /// G = I^T F: the transpose of the value operator applied to F (n_s x cols), giving n_d x cols
 /// (the generalized force on the data sites).
 void apply_value_transpose(const SurfaceOperators& ops, linalg::ConstMatrixView F, linalg::MatrixView G);

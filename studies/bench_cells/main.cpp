@@ -1,0 +1,288 @@
+// Benchmark of the cell force call (dissertation Secs. 2.3-2.4 and 5.2): the whole-blood cell
+// load of Sec. 5.2, 8 red cells and 2 platelets, with every force of their models (red cell:
+// Skalak, bending, dissipation; platelet: neo-Hookean, bending with its reference curvature).
+//
+// Reports, per cell type: time per force call (median of repeats) split into the dense operator
+// products, bending (its data-site products, H kernel and the jets of H - H'), the site kernels
+// and the reductions; the flop rate of the products against a square DGEMM measured in the same
+// run (this machine's ceiling for dense products); the memory held by each type's operators;
+// the time per red cell as the batch grows (N = 1, 2, 4, 8); and, as the error of this speed,
+// the largest difference between the batched forces and the per-cell host path.
+//
+// Sizes: full scale, red cells 2,500 data / 10,000 sample sites (Secs. 5.1.3, 5.2); quick scale
+// 625 / 2,500 (Sec. 5.1.2); platelets 900 / 900 at both.
+//
+// Run:   build/studies/study_bench_cells --scale quick --out runs/bench_cells
+#include "common/study.hpp"
+#include "rbfib/cells/batch.hpp"
+#include "rbfib/cells/presets.hpp"
+#include "rbfib/core/error.hpp"
+#include "rbfib/core/units.hpp"
+#include "rbfib/linalg/dense.hpp"
+#include "rbfib/mechanics/shell.hpp"
+#include "rbfib/surface/geometry.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <random>
+
+using namespace rbfib;
+using namespace rbfib::cells;
+namespace st = rbfib::study;
+using st::Json;
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+/// Flop rate (flop/s) of a square n x n x n DGEMM through the dense seam, median of repeats.
+double dgemm_rate(index_t n, int repeats) {
+  std::vector<double> h(static_cast<std::size_t>(n * n));
+  for (std::size_t k = 0; k < h.size(); ++k) h[k] = std::sin(0.001 * double(k));
+  const linalg::DeviceMatrix A = linalg::DeviceMatrix::from_host(n, n, h.data()), B = A;
+  linalg::DeviceMatrix C(n, n);
+  auto call = [&] { linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, A.view(), B.view(), 0.0, C.view()); };
+  call();
+  const double t = st::median_seconds(repeats, [&] {
+    call();
+    synchronize();
+  });
+  return 2.0 * double(n) * n * n / t;
+}
+
+/// Cells of the whole-blood scene: two rows of four red cells (Sec. 5.2.1: concavities facing z,
+/// rows staggered), each turned and slightly stretched so that every force is nonzero.
+std::vector<Placement> red_cell_placements(index_t count) {
+  std::vector<Placement> p;
+  for (index_t c = 0; c < count; ++c) {
+    Placement q;
+    q.center = {(2.0 + 4.0 * double(c % 4)) * units::um, 6.0 * units::um, (4.0 + 8.0 * double(c / 4) + (c % 2)) * units::um};
+    q.axis = {1.0, 0.3 * double(c), 0.2};
+    q.angle = 0.2 * double(c);
+    q.stretch = {1.02, 1.0 / 1.02, 1.0};
+    p.push_back(q);
+  }
+  return p;
+}
+
+std::vector<Placement> platelet_placements() {
+  Placement a, b;
+  a.center = {4 * units::um, 2.5 * units::um, 4 * units::um};
+  a.stretch = {1.03, 1.0, 1.0 / 1.03};
+  b.center = {12 * units::um, 2.5 * units::um, 12 * units::um};
+  b.axis = {0, 0, 1};
+  b.angle = 1.0;
+  b.stretch = {1.0, 1.03, 1.0 / 1.03};
+  return {a, b};
+}
+
+/// Smooth velocities at the data sites (a linear field, 1/s times position): the dissipation
+/// term then does real work.
+void set_velocities(Batch& b) {
+  const std::vector<double> X = b.positions_host();
+  std::vector<double> U(X.size());
+  const index_t nd = b.type().n_data(), N = b.size();
+  for (index_t c = 0; c < N; ++c)
+    for (index_t i = 0; i < nd; ++i) {
+      const double x = X[(0 * N + c) * nd + i], y = X[(1 * N + c) * nd + i], z = X[(2 * N + c) * nd + i];
+      U[(0 * N + c) * nd + i] = 1000 * y;  // shear 1000/s (Sec. 5.2)
+      U[(1 * N + c) * nd + i] = 50 * z;
+      U[(2 * N + c) * nd + i] = -30 * x;
+    }
+  thrust::copy(U.begin(), U.end(), b.state().storage().begin() + 3 * N * nd);
+}
+
+/// Flops of the dense products of one call: value and derivative jets of positions (and
+/// velocities) at the sample sites and, with bending, the data sites (one product over both), and
+/// the derivatives of H - H' at the sample sites.
+struct ProductFlops {
+  double jets = 0, bending = 0;
+  double bytes = 0;  ///< operator bytes streamed (each product reads its operator once)
+};
+ProductFlops product_flops(const CellType& t, index_t N) {
+  const double nd = double(t.n_data()), ns = double(t.n_sample()), nj = double(t.jet_sites());
+  ProductFlops f;
+  const double cols = (t.model().dissipation() ? 6.0 : 3.0) * N;
+  f.jets = 2.0 * 6.0 * nj * nd * cols;
+  f.bytes = 8.0 * 6.0 * nj * nd;
+  if (t.model().bending()) {
+    f.bending = 2.0 * 5.0 * ns * nd * N;
+    f.bytes += 8.0 * 5.0 * ns * nd;
+  }
+  return f;
+}
+
+/// Median over repeated calls of each phase and of the total (after one warm-up call, which
+/// allocates the workspace).
+ForceTimings time_calls(const Batch& b, int repeats, double& total) {
+  CellForces out;
+  compute_forces(b, out);
+  std::vector<double> ph[5], tot;
+  for (int i = 0; i < repeats; ++i) {
+    ForceTimings t;
+    compute_forces(b, out, &t);
+    const double v[5] = {t.jets, t.bending_products, t.bending_kernel, t.kernels, t.reductions};
+    for (int q = 0; q < 5; ++q) ph[q].push_back(v[q]);
+    tot.push_back(t.total());
+  }
+  total = median(tot);
+  return {median(ph[0]), median(ph[1]), median(ph[2]), median(ph[3]), median(ph[4])};
+}
+
+/// max |batched - per-cell| / max |per-cell| over the force densities of cell c, against the
+/// host path of mechanics/shell.hpp (the same kernels, one cell at a time).
+double per_cell_difference(const Batch& b, index_t c) {
+  const CellType& t = b.type();
+  CellForces out;
+  compute_forces(b, out);
+  const index_t nd = t.n_data(), ns = t.n_sample(), N = b.size();
+  const std::vector<double> state = b.state().to_host(), dens = out.density.to_host();
+  auto column = [](const std::vector<double>& M, index_t n, index_t N_, index_t cell, index_t col0) {
+    std::vector<double> o(static_cast<std::size_t>(3 * n));
+    for (index_t d = 0; d < 3; ++d)
+      for (index_t i = 0; i < n; ++i) o[d * n + i] = M[(col0 + d * N_ + cell) * n + i];
+    return o;
+  };
+  const std::vector<double> X = column(state, nd, N, c, 0);
+  const auto Z = t.reference_jets_host();
+  const auto XJ = surface::jets_from_operators(t.to_sample(), X);
+  const ForceModel& m = t.model();
+  std::vector<double> F(static_cast<std::size_t>(3 * ns), 0.0);
+  auto add = [&](const std::vector<double>& G) {
+    for (std::size_t k = 0; k < F.size(); ++k) F[k] += G[k];
+  };
+  for (const auto& e : m.elastic) add(mechanics::elastic_force_density(t.name(), XJ, Z, e));
+  if (m.bending()) {
+    std::vector<double> H0;
+    if (m.H0_reference) {
+      H0.resize(t.H0_data().size());
+      thrust::copy(t.H0_data().begin(), t.H0_data().end(), H0.begin());
+    }
+    add(mechanics::bending_force_density(t.name(), *t.at_data(), t.to_sample(), X, Z, {m.kappa, m.H0, H0}));
+  }
+  if (m.dissipation())
+    add(mechanics::dissipative_force_density(t.name(), XJ, surface::jets_from_operators(t.to_sample(), column(state, nd, N, c, 3 * N)),
+                                             Z, m.nu));
+  const std::vector<double> got = column(dens, ns, N, c, 0);
+  double diff = 0, scale = 0;
+  for (std::size_t k = 0; k < F.size(); ++k) {
+    diff = std::max(diff, std::abs(got[k] - F[k]));
+    scale = std::max(scale, std::abs(F[k]));
+  }
+  return diff / scale;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return st::run_main("bench_cells", [&] {
+    const st::Options opt = st::parse_command_line(
+        argc, argv, "bench_cells", "Time per force call of the whole-blood cell load, split by phase, against a DGEMM ceiling");
+    const bool full = opt.scale == st::Scale::full;
+    const index_t rbc_nd = full ? 2500 : 625, rbc_ns = full ? 10000 : 2500;
+    const index_t plt_nd = 900, plt_ns = 900;
+    const index_t red_cells = 8;
+    const int repeats = full ? 11 : 7;
+    const index_t dgemm_n = full ? 3000 : 2000;
+
+    // ---- 1. Parameters and the machine's ceiling -----------------------------------------------
+    Json results = st::make_results(opt);
+    Json& P = results["parameters"];
+    P["red_cells"] = double(red_cells);
+    P["red_cell_sites_data_sample"] = to_text(rbc_nd) + " / " + to_text(rbc_ns);
+    P["platelets"] = 2;
+    P["platelet_sites_data_sample"] = to_text(plt_nd) + " / " + to_text(plt_ns);
+    P["repeats"] = repeats;
+    P["threads"] = omp_get_max_threads();
+    P["dense_backend"] = linalg::dense_backend_name();
+    const char* policy = std::getenv("OMP_WAIT_POLICY");
+    P["OMP_WAIT_POLICY"] = policy ? policy : "unset (libgomp default: spin, then sleep)";
+    const double ceiling = dgemm_rate(dgemm_n, repeats);
+    const double bandwidth = 3.0 * 8.0 * double(1 << 24) / st::triad_seconds(1 << 24);
+    P["dgemm_n"] = double(dgemm_n);
+    Json& V = results["values"];
+    V["dgemm_gflops"] = ceiling / 1e9;
+    V["triad_GBps"] = bandwidth / 1e9;
+    st::log(opt, "1. " + linalg::dense_backend_name() + ", " + to_text(omp_get_max_threads()) + " threads: square DGEMM n = " +
+                     to_text(dgemm_n) + " at " + to_text(ceiling / 1e9) + " GFlop/s, triad " + to_text(bandwidth / 1e9) + " GB/s");
+
+    // ---- 2. Cell types -----------------------------------------------------------------------
+    Json types = st::table({"type", "n_data", "n_sample", "build_seconds", "operator_MiB", "forces"},
+                           {"", "", "", "s", "MiB", ""});
+    auto build = [&](auto make) {
+      const auto t0 = std::chrono::steady_clock::now();
+      auto t = make();
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      types["rows"].push(Json::Array{Json(t->name()), Json(double(t->n_data())), Json(double(t->n_sample())), Json(s),
+                                     Json(double(t->bytes()) / 1048576.0), Json(t->model().describe())});
+      st::log(opt, "2. " + t->describe() + " (built in " + to_text(s) + " s)");
+      return t;
+    };
+    const auto rbc = build([&] { return red_cell(rbc_nd, rbc_ns); });
+    const auto plt = build([&] { return platelet(plt_nd, plt_ns); });
+
+    // ---- 3. The whole-blood load: time per call, split, product rate -------------------------
+    Json calls = st::table({"type", "cells", "seconds", "products_seconds", "bending_seconds", "kernels_seconds",
+                            "reductions_seconds", "seconds_per_cell", "product_gflops", "product_fraction_of_dgemm",
+                            "product_fraction_of_roofline", "kernel_share", "max_rel_diff_vs_per_cell"},
+                           {"", "", "s", "s", "s", "s", "s", "s", "GFlop/s", "", "", "", ""});
+    // Roofline of the products: each streams its operator once and does 2 k flops per operator
+    // entry for k columns, so its time is at least max(flops / DGEMM rate, bytes / triad bandwidth).
+    double load_roofline_seconds = 0;
+    double load_seconds = 0, load_kernel_seconds = 0, load_product_flops = 0, load_product_seconds = 0;
+    auto measure = [&](const std::shared_ptr<const CellType>& type, const std::vector<Placement>& placements, bool record) {
+      Batch b(type, placements);
+      if (type->model().dissipation()) set_velocities(b);
+      double total = 0;
+      const ForceTimings t = time_calls(b, repeats, total);
+      const ProductFlops f = product_flops(*type, b.size());
+      const double rate = (f.jets + f.bending) / t.products();
+      const double roofline = std::max((f.jets + f.bending) / ceiling, f.bytes / bandwidth);
+      // Kernels: the site launch, bending's H kernel and the reductions.
+      const double kernel_seconds = t.kernels + t.bending_kernel + t.reductions;
+      const double diff = per_cell_difference(b, b.size() - 1);
+      calls["rows"].push(Json::Array{Json(type->name()), Json(double(b.size())), Json(total), Json(t.products()),
+                                     Json(t.bending()), Json(t.kernels), Json(t.reductions), Json(total / double(b.size())),
+                                     Json(rate / 1e9), Json(rate / ceiling), Json(roofline / t.products()),
+                                     Json(kernel_seconds / total), Json(diff)});
+      st::log(opt, "3. " + type->name() + " x " + to_text(b.size()) + ": " + to_text(total * 1e3) + " ms per call (products " +
+                       to_text(t.products() * 1e3) + " of which bending " + to_text(t.bending_products * 1e3) +
+                       ", bending H kernel " + to_text(t.bending_kernel * 1e3) + ", site kernels " + to_text(t.kernels * 1e3) +
+                       ", reductions " + to_text(t.reductions * 1e3) + " ms); products at " + to_text(rate / 1e9) +
+                       " GFlop/s = " + to_text(rate / ceiling) + " of DGEMM; batched vs per-cell " + to_text(diff));
+      if (record) {
+        load_seconds += total;
+        load_kernel_seconds += kernel_seconds;
+        load_product_flops += f.jets + f.bending;
+        load_product_seconds += t.products();
+        load_roofline_seconds += roofline;
+      }
+    };
+    for (index_t n : {index_t(1), index_t(2), index_t(4)}) measure(rbc, red_cell_placements(n), false);
+    measure(rbc, red_cell_placements(red_cells), true);
+    measure(plt, platelet_placements(), true);
+    V["load_seconds_per_call"] = load_seconds;
+    V["load_kernel_share"] = load_kernel_seconds / load_seconds;
+    V["load_product_fraction_of_dgemm"] = load_product_flops / load_product_seconds / ceiling;
+    V["load_product_fraction_of_roofline"] = load_roofline_seconds / load_product_seconds;
+    if (full) {
+      // The red cell of the seed's Sec. 4.2.2.2 runs (864 data / 8,832 sample sites), one cell.
+      measure(build([&] { return red_cell(864, 8832); }), red_cell_placements(1), false);
+    }
+    st::log(opt, "3. whole-blood cell load: " + to_text(load_seconds * 1e3) + " ms per force call; kernels and reductions " +
+                     to_text(100 * load_kernel_seconds / load_seconds) + "% of it");
+
+    results["tables"]["cell_types"] = types;
+    results["tables"]["force_calls"] = calls;
+    st::write_results(opt, results);
+    return 0;
+  });
+}
