@@ -144,7 +144,7 @@ void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings) 
   const double* V = ptr(w.values.storage());
   const double* D = ptr(w.derivatives.storage());
   const JetView xj{V, nj, D, ldd, nj, N};
-  const JetView uj{V + 3 * N * nj, nj, D + 3 * N * ldd, ldd, nj, N};
+  const JetView uj = dissipation ? JetView{V + 3 * N * nj, nj, D + 3 * N * ldd, ldd, nj, N} : JetView{};
   if (timings) timings->jets = seconds_since(t0);
 
   // 2. Bending: H - H' at the data sites, and the derivatives of H - H' at the sample sites.

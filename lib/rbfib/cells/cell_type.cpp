@@ -158,8 +158,14 @@ std::size_t CellType::bytes() const {
 }
 
 std::string CellType::describe() const {
+  const std::string interpolant = spec_.interpolant == Interpolant::spherical_harmonics
+                                     ? "spherical harmonics of degree " + to_text(spec_.sh_degree) + " (factored)"
+                                     : "PHS r^" + to_text(spec_.basis.power) + " with harmonics of degree <= " +
+                                           to_text(spec_.basis.sh_degree);
   return "cell type '" + name() + "': " + spec_.shape.name + "; " + to_text(n_data()) + " data sites, " +
-         to_text(n_sample()) + " sample sites; " + operators_->description + "\n  forces: " + model().describe() +
+         to_text(n_sample()) + " sample sites; " + interpolant +
+         (model().bending() ? " (operators also evaluate at the data sites, for H)" : "") +
+         "\n  forces: " + model().describe() +
          "\n  reference area " + to_text(area0_ * 1e8) + " um^2, volume " + to_text(volume0_ * 1e12) +
          " um^3; device memory " + to_text(double(bytes()) / 1048576.0) + " MiB";
 }
