@@ -275,7 +275,12 @@ int main(int argc, char** argv) {
     V["load_product_fraction_of_roofline"] = load_roofline_seconds / load_product_seconds;
     if (full) {
       // The red cell of the seed's Sec. 4.2.2.2 runs (864 data / 8,832 sample sites), one cell.
-      measure(build([&] { return red_cell(864, 8832); }), red_cell_placements(1), false);
+      measure(build([&] {
+                CellTypeSpec spec = red_cell_spec(864, 8832);
+                spec.name = "red cell (864 / 8832 sites)";
+                return std::make_shared<const CellType>(std::move(spec));
+              }),
+              red_cell_placements(1), false);
     }
     st::log(opt, "3. whole-blood cell load: " + to_text(load_seconds * 1e3) + " ms per force call; kernels and reductions " +
                      to_text(100 * load_kernel_seconds / load_seconds) + "% of it");

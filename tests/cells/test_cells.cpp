@@ -223,9 +223,7 @@ TEST(CellsBatch, TranslationInvariantForcesBalancePerCell) {
   double r[2];
   int k = 0;
   for (index_t ns : {400, 1600}) {
-    CellTypeSpec spec = red_cell(144, 400)->spec();
-    spec.sample_sites = surface::bauer_spiral(ns);
-    spec.sphere_weights.clear();
+    CellTypeSpec spec = red_cell_spec(144, ns);
     spec.model.kappa = 0;
     const auto type = std::make_shared<const CellType>(spec);
     Batch b(type, three_placements());

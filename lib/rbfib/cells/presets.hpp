@@ -22,6 +22,13 @@
 
 namespace rbfib::cells {
 
+/// The specifications, to adjust (name, sites, model) before building a type from them.
+CellTypeSpec red_cell_spec(index_t n_data = 2500, index_t n_sample = 10000);
+CellTypeSpec platelet_spec(index_t n_data = 900, index_t n_sample = 900);
+CellTypeSpec skalak_sphere_spec(double radius, index_t n_data = 625, index_t n_sample = 880);
+CellTypeSpec chapter3_red_cell_spec(int M = 19, index_t n_sample = 8281);
+
+/// The types built from those specifications.
 std::shared_ptr<const CellType> red_cell(index_t n_data = 2500, index_t n_sample = 10000);
 std::shared_ptr<const CellType> platelet(index_t n_data = 900, index_t n_sample = 900);
 std::shared_ptr<const CellType> skalak_sphere(double radius, index_t n_data = 625, index_t n_sample = 880);
