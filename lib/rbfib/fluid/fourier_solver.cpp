@@ -1,0 +1,121 @@
+#include "rbfib/fluid/fourier_solver.hpp"
+
+#include "rbfib/core/error.hpp"
+#include "rbfib/fluid/poisson.hpp"
+
+#include <thrust/transform.h>
+
+#include <cmath>
+
+namespace rbfib {
+
+namespace {
+std::array<int, 3> extents(const Box& box) { return {box.n(0), box.n(1), box.n(2)}; }
+std::array<bool, 3> transformed(const Box& box) {
+  std::array<bool, 3> t{false, false, false};
+  for (int d = 0; d < box.dims; ++d) t[d] = box.axes[d].periodic();
+  return t;
+}
+}  // namespace
+
+bool FourierSolver::applies(const Box& box) {
+  if (box.dims < 1) return false;
+  for (int d = 0; d < box.dims; ++d)
+    if (d != 1 && !box.axes[d].periodic()) return false;
+  return linalg::FourierTransform::supported(extents(box), transformed(box));
+}
+
+FourierSolver::FourierSolver(const Box& box, Correction correction, double alpha, double beta, const std::string& name)
+    : lap_(box, correction), alpha_(alpha), beta_(beta), name_(name) {
+  require(applies(box), name + ": box", "walls on an axis other than y",
+          "the Fourier solver needs x (and z) periodic; use the multigrid solver");
+  require(alpha >= 0 && std::isfinite(alpha), name + ": alpha (coefficient of I~)", alpha, "must be finite and >= 0");
+  require(beta <= 0 && std::isfinite(beta), name + ": beta (coefficient of L)", beta, "must be finite and <= 0");
+  require(alpha > 0 || beta < 0, name + ": alpha, beta", "0, 0", "the operator must not vanish");
+  const kernels::LaplacianStencil& s = lap_.stencil();
+  wall_ = box.dims >= 2 && !box.axes[1].periodic();
+  const bool neumann_both = wall_ && s.axis[1].lo.ghost == 1.0 && s.axis[1].hi.ghost == 1.0;
+  singular_ = alpha == 0 && (!wall_ || neumann_both);
+  const double pi = 3.14159265358979323846;
+  for (int d = 0; d < 3; ++d) {
+    const int n = box.n(d);
+    host_vector<double> mu(static_cast<std::size_t>(n), 0.0);
+    if (d < box.dims && s.axis[d].periodic)
+      for (int k = 0; k < n; ++k) mu[k] = -(2.0 - 2.0 * std::cos(2 * pi * k / n)) * s.axis[d].inv_h2;
+    mu_[d] = mu;
+  }
+  fft_ = std::make_unique<linalg::FourierTransform>(extents(box), transformed(box));
+  work_.resize(static_cast<std::size_t>(box.size()));
+  if (wall_) thomas_.resize(static_cast<std::size_t>(box.size()));
+}
+
+void FourierSolver::solve(const dvec& b, dvec& x) const {
+  const index_t n = lap_.size();
+  require(static_cast<index_t>(b.size()) == n, name_ + ": right-hand side size", b.size(), "must be " + to_text(n));
+  const dvec* rhs = &b;
+  if (singular_) {
+    mean_free_ = b;
+    remove_mean(mean_free_);
+    rhs = &mean_free_;
+  }
+  thrust::transform(rhs->begin(), rhs->end(), work_.begin(), [] RBFIB_HD (double v) { return linalg::complex(v, 0.0); });
+  fft_->forward(work_);
+
+  const kernels::LaplacianStencil s = lap_.stencil();
+  const double alpha = alpha_, beta = beta_;
+  const bool singular = singular_;
+  const double *mux = ptr(mu_[0]), *muy = ptr(mu_[1]), *muz = ptr(mu_[2]);
+  linalg::complex* w = thrust::raw_pointer_cast(work_.data());
+  const int nx = s.shape.n[0], ny = s.shape.n[1], nz = s.shape.n[2];
+  if (!wall_) {
+    // Diagonal in (k_x, k_y, k_z); the zero mode of a singular operator is set to zero.
+    for_each_index(n, [=] RBFIB_HD (index_t p) {
+      const index_t i = p % nx, q = p / nx, j = q % ny, k = q / ny;
+      const double a = alpha + beta * (mux[i] + muy[j] + muz[k]);
+      w[p] = (singular && p == 0) ? linalg::complex(0.0, 0.0) : w[p] / a;
+    });
+  } else {
+    // One tridiagonal system in y per (k_x, k_z): the Thomas algorithm, c' kept in `cp`.
+    const AxisStencil ay = s.axis[1];
+    const double off = beta * ay.inv_h2;
+    double* cp = ptr(thomas_);
+    for_each_index(index_t(nx) * nz, [=] RBFIB_HD (index_t m) {
+      const index_t i = m % nx, k = m / nx;
+      const double mu = mux[i] + muz[k];
+      const bool pin = singular && m == 0;  // x_0 = 0 replaces the redundant first equation
+      auto diag = [&](int j) {
+        const double ends = (j == 0 ? ay.lo.ghost : 0.0) + (j == ny - 1 ? ay.hi.ghost : 0.0);
+        const double wj = ay.weight(j);
+        return alpha * wj + beta * (wj * mu + (ends - 2.0) * ay.inv_h2);
+      };
+      const index_t base = i + index_t(nx) * ny * k, st = nx;
+      // forward sweep
+      double d0 = pin ? 1.0 : diag(0);
+      double c = pin ? 0.0 : off / d0;
+      linalg::complex r = pin ? linalg::complex(0.0, 0.0) : w[base] / d0;
+      cp[base] = c;
+      w[base] = r;
+      for (int j = 1; j < ny; ++j) {
+        const index_t p = base + j * st;
+        const double den = diag(j) - off * c;
+        c = off / den;
+        r = (w[p] - off * r) / den;
+        cp[p] = c;
+        w[p] = r;
+      }
+      // back substitution
+      for (int j = ny - 2; j >= 0; --j) {
+        const index_t p = base + j * st;
+        w[p] = w[p] - cp[p] * w[p + st];
+      }
+    });
+  }
+
+  fft_->backward(work_);
+  x.resize(static_cast<std::size_t>(n));
+  const double inv = 1.0 / fft_->scale();
+  thrust::transform(work_.begin(), work_.end(), x.begin(), [=] RBFIB_HD (const linalg::complex& v) { return v.real() * inv; });
+  if (singular_) remove_mean(x);
+}
+
+}  // namespace rbfib
