@@ -18,6 +18,7 @@
 
 #include "rbfib/core/units.hpp"
 #include "rbfib/fluid/navier_stokes.hpp"
+#include "rbfib/linalg/blas.hpp"
 
 #include <omp.h>
 
@@ -84,16 +85,15 @@ int main(int argc, char** argv) {
 #endif
     par["thread_counts"] = std::to_string(thread_counts.front()) + (thread_counts.size() > 1 ? ", " + std::to_string(thread_counts.back()) : "");
     std::vector<GridSpec> grids = {{"32^3", cube(32)}, {"64^3", cube(64)}};
-    if (!quick) {
-      grids.push_back({"128^3", cube(128)});
-      grids.push_back({"80x60x80 (whole blood)", whole_blood()});
-    }
+    if (!quick) grids.push_back({"128^3", cube(128)});
+    grids.push_back({"80x60x80 (whole blood)", whole_blood()});
     Json triad = table({"threads", "seconds", "bandwidth_GBps"}, {"", "s", "GB/s"});
     Json bw = table({"threads", "grid", "unknowns", "seconds", "bandwidth_GBps", "fraction_of_triad"}, {"", "", "", "s", "GB/s", ""});
-    Json steps = table({"threads", "grid", "integrator", "unknowns", "seconds", "advection_seconds", "helmholtz_seconds",
-                        "poisson_seconds", "projection_seconds", "other_seconds", "poisson_share", "helmholtz_iterations",
-                        "poisson_iterations"},
-                       {"", "", "", "", "s", "s", "s", "s", "s", "s", "", "", ""});
+    Json steps = table({"threads", "grid", "integrator", "solver", "unknowns", "seconds", "advection_seconds",
+                        "helmholtz_seconds", "poisson_seconds", "projection_seconds", "other_seconds", "poisson_share",
+                        "helmholtz_iterations", "poisson_iterations", "max_rel_diff_vs_multigrid"},
+                       {"", "", "", "", "", "s", "s", "s", "s", "s", "s", "", "", "", ""});
+    double whole_blood_speedup = 0.0, whole_blood_fourier_share = 1.0, worst_agreement = 0.0;
     double best_fraction = 0.0, dram_fraction = 0.0;
     for (int threads : thread_counts) {
 #if !defined(RBFIB_BACKEND_CUDA)
@@ -126,59 +126,91 @@ int main(int argc, char** argv) {
                    std::to_string(100 * bwl / bw_triad) + "% of triad)");
     }
 
-    // 3. solver steps
+    // 3. solver steps: the multigrid path and the direct Fourier path (x and z periodic: every grid
+    // here) from the same state, the same steps; the velocities they reach are compared.
     for (const GridSpec& g : grids)
       for (TimeIntegrator ti : {TimeIntegrator::backward_forward_euler, TimeIntegrator::peskin_two_stage}) {
-        NavierStokesOptions o;
-        o.integrator = ti;
-        o.dt = dt;
         const bool channel = !g.grid.periodic(1);
         const double U = 12 * units::mm / units::s;
         BoundaryVelocity bc;
         if (channel) bc = [U](int a, int d, int side, double, double, double, double) { return (a == 0 && d == 1 && side) ? U : 0.0; };
-        NavierStokesSolver ns(g.grid, FluidParameters{1.0, 0.1 * units::cP}, o, bc);
-        FluidState s = ns.zero_state();
-        const double L = 16 * units::um, k = 2 * 3.14159265358979323846 / L;
-        VectorField f;
-        for (int a = 0; a < 3; ++a) {
-          const Box box = ns.operators().component_box(a);
-          s.u[a] = sample(box, [&](double x, double y, double) {
-            if (channel) return a == 0 ? U * y / (12 * units::um) : 0.0;
-            return a == 0 ? std::sin(k * x) * std::cos(k * y) : a == 1 ? -std::cos(k * x) * std::sin(k * y) : 0.0;
-          });
-          f[a] = sample(box, [&](double x, double y, double z) {
-            const double r2 = std::pow(x - 8 * units::um, 2) + std::pow(y - 0.5 * g.grid.length[1], 2) + std::pow(z - 8 * units::um, 2);
-            return a == 0 ? 1e5 * std::exp(-r2 / (units::um * units::um)) : 0.0;
-          });
-        }
-        ns.step(s, &f);  // warm-up
-        std::vector<double> tot, adv, hel, poi, pro, oth, hit, pit;
-        for (int r = 0; r < repeats; ++r) {
-          StepStats st;
-          tot.push_back(median_seconds(1, [&] { st = ns.step(s, &f); }));
-          adv.push_back(st.seconds_advection);
-          hel.push_back(st.seconds_helmholtz);
-          poi.push_back(st.seconds_poisson);
-          pro.push_back(st.seconds_projection);
-          oth.push_back(st.seconds_other);
-          double h = 0, p = 0;
-          for (int k2 = 0; k2 < st.stages; ++k2) {
-            for (int a = 0; a < 3; ++a) h += st.helmholtz_iterations[k2][a];
-            p += st.poisson_iterations[k2];
-          }
-          hit.push_back(h / (3 * st.stages));
-          pit.push_back(p / st.stages);
-        }
-        const double T = median(tot), P = median(poi);
         const char* iname = ti == TimeIntegrator::backward_forward_euler ? "BFE" : "Peskin";
-        steps["rows"].push(row({threads, g.name, iname, double(g.grid.cells[0]) * g.grid.cells[1] * g.grid.cells[2], T, median(adv),
-                                median(hel), P, median(pro), median(oth), P / T, median(hit), median(pit)}));
-        std::ostringstream m;
-        m << "threads " << threads << ", " << g.name << " " << iname << ": " << T << " s/step (advection " << median(adv) << ", helmholtz " << median(hel)
-          << ", poisson " << P << " = " << 100 * P / T << "%, projection " << median(pro) << ")";
-        log(opt, m.str());
+        double T_multigrid = 0.0;
+        VectorField u_multigrid;
+        for (FluidSolvers solvers : {FluidSolvers::multigrid, FluidSolvers::fourier}) {
+          NavierStokesOptions o;
+          o.integrator = ti;
+          o.dt = dt;
+          o.solvers = solvers;
+          NavierStokesSolver ns(g.grid, FluidParameters{1.0, 0.1 * units::cP}, o, bc);
+          FluidState s = ns.zero_state();
+          const double L = 16 * units::um, k = 2 * 3.14159265358979323846 / L;
+          VectorField f;
+          for (int a = 0; a < 3; ++a) {
+            const Box box = ns.operators().component_box(a);
+            s.u[a] = sample(box, [&](double x, double y, double) {
+              if (channel) return a == 0 ? U * y / (12 * units::um) : 0.0;
+              return a == 0 ? std::sin(k * x) * std::cos(k * y) : a == 1 ? -std::cos(k * x) * std::sin(k * y) : 0.0;
+            });
+            f[a] = sample(box, [&](double x, double y, double z) {
+              const double r2 = std::pow(x - 8 * units::um, 2) + std::pow(y - 0.5 * g.grid.length[1], 2) + std::pow(z - 8 * units::um, 2);
+              return a == 0 ? 1e5 * std::exp(-r2 / (units::um * units::um)) : 0.0;
+            });
+          }
+          ns.step(s, &f);  // warm-up
+          std::vector<double> tot, adv, hel, poi, pro, oth, hit, pit;
+          for (int r = 0; r < repeats; ++r) {
+            StepStats st;
+            tot.push_back(median_seconds(1, [&] { st = ns.step(s, &f); }));
+            adv.push_back(st.seconds_advection);
+            hel.push_back(st.seconds_helmholtz);
+            poi.push_back(st.seconds_poisson);
+            pro.push_back(st.seconds_projection);
+            oth.push_back(st.seconds_other);
+            double h = 0, p = 0;
+            for (int k2 = 0; k2 < st.stages; ++k2) {
+              for (int a = 0; a < 3; ++a) h += st.helmholtz_iterations[k2][a];
+              p += st.poisson_iterations[k2];
+            }
+            hit.push_back(h / (3 * st.stages));
+            pit.push_back(p / st.stages);
+          }
+          const double T = median(tot), P = median(poi);
+          // Agreement of the two paths after the same steps: max |u_F - u_MG| / max |u_MG|.
+          double diff = 0.0;
+          if (solvers == FluidSolvers::multigrid) {
+            T_multigrid = T;
+            u_multigrid = s.u;
+          } else {
+            double num = 0.0, den = 0.0;
+            for (int a = 0; a < 3; ++a) {
+              dvec d = s.u[a];
+              blas::axpy(-1.0, u_multigrid[a], d);
+              num = std::max(num, blas::norm_inf(d));
+              den = std::max(den, blas::norm_inf(u_multigrid[a]));
+            }
+            diff = num / den;
+            worst_agreement = std::max(worst_agreement, diff);
+            if (channel && ti == TimeIntegrator::backward_forward_euler && threads == thread_counts.back()) {
+              whole_blood_speedup = T_multigrid / T;
+              whole_blood_fourier_share = P / T;
+            }
+          }
+          steps["rows"].push(row({threads, g.name, iname, to_string(solvers), double(g.grid.cells[0]) * g.grid.cells[1] * g.grid.cells[2],
+                                  T, median(adv), median(hel), P, median(pro), median(oth), P / T, median(hit), median(pit),
+                                  solvers == FluidSolvers::multigrid ? Json() : Json(diff)}));
+          std::ostringstream m;
+          m << "threads " << threads << ", " << g.name << " " << iname << ", " << to_string(solvers) << ": " << T
+            << " s/step (advection " << median(adv) << ", helmholtz " << median(hel) << ", poisson " << P << " = "
+            << 100 * P / T << "%, projection " << median(pro) << ")";
+          if (solvers != FluidSolvers::multigrid) m << "; velocity vs multigrid " << diff;
+          log(opt, m.str());
+        }
       }
     }
+    results["values"]["whole_blood_fourier_speedup"] = whole_blood_speedup;
+    results["values"]["whole_blood_fourier_poisson_share"] = whole_blood_fourier_share;
+    results["values"]["max_rel_diff_fourier_vs_multigrid"] = worst_agreement;
     results["tables"]["triad"] = triad;
     results["tables"]["stencil_bandwidth"] = bw;
     results["tables"]["step_times"] = steps;

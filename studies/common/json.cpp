@@ -71,11 +71,13 @@ void Json::write(std::ostream& os, int indent) const {
     os << ']';
   } else if (auto* o = std::get_if<Object>(&v_)) {
     os << '{';
-    for (size_t i = 0; i < o->size(); ++i) {
-      os << (i ? ",\n" : "\n") << pad;
-      write_string(os, (*o)[i].first);
+    bool first = true;
+    for (const auto& kv : *o) {
+      os << (first ? "\n" : ",\n") << pad;
+      first = false;
+      write_string(os, kv.first);
       os << ": ";
-      (*o)[i].second.write(os, indent + 2);
+      kv.second.write(os, indent + 2);
     }
     if (!o->empty()) os << '\n' << end;
     os << '}';

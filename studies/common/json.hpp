@@ -3,6 +3,7 @@
 #include <map>
 #include <memory>
 #include <ostream>
+#include <list>
 #include <string>
 #include <variant>
 #include <vector>
@@ -11,7 +12,9 @@ namespace rbfib::study {
 
 class Json {
  public:
-  using Object = std::vector<std::pair<std::string, Json>>;  // keeps insertion order
+  /// Keeps insertion order; a list, so that a reference to a member (Json& par = r["parameters"])
+  /// stays valid while more members are added (a vector would move them).
+  using Object = std::list<std::pair<std::string, Json>>;
   using Array = std::vector<Json>;
 
   Json() : v_(nullptr) {}

@@ -168,6 +168,7 @@ int main(int argc, char** argv) {
           NavierStokesOptions o;
           o.integrator = ti;
           o.dt = dt;
+          o.solvers = FluidSolvers::multigrid;  // the iteration counts of the seed's solver family
           NavierStokesSolver ns(pb.grid, pb.fluid, o, pb.boundary);
           FluidState s = ns.zero_state(0.0);
           for (int a = 0; a < 3; ++a)

@@ -49,12 +49,53 @@ NavierStokesSolver::NavierStokesSolver(const MacGrid& grid, FluidParameters flui
   const double nu = fluid_.viscosity / fluid_.density;
   // Backward Euler: c = dt nu; Peskin: both stages have c = (dt/2) nu.
   const double c = (options_.integrator == TimeIntegrator::backward_forward_euler ? 1.0 : 0.5) * options_.dt * nu;
+  bool fourier_possible = FourierSolver::applies(ops_.scalar_box());
+  for (int a = 0; a < grid_.dims; ++a) fourier_possible = fourier_possible && FourierSolver::applies(ops_.component_box(a));
+  if (options_.solvers == FluidSolvers::fourier)
+    require(fourier_possible, "fluid.solvers", to_string(options_.solvers),
+            "needs x and z periodic (y periodic or walls); this grid has walls across x or z");
+  fourier_ = options_.solvers == FluidSolvers::fourier || (options_.solvers == FluidSolvers::automatic && fourier_possible);
   for (int a = 0; a < grid_.dims; ++a) {
-    HelmholtzOptions h = options_.helmholtz;
-    h.solver.name = options_.helmholtz.solver.name + " u" + std::to_string(a);
-    helmholtz_[a] = std::make_unique<HelmholtzSolver>(ops_.component_box(a), c, h);
+    const std::string name = options_.helmholtz.solver.name + " u" + std::to_string(a);
+    if (fourier_) {
+      fourier_helmholtz_[a] = std::make_unique<FourierSolver>(ops_.component_box(a), Correction::appendix_a, 1.0, -c, name);
+    } else {
+      HelmholtzOptions h = options_.helmholtz;
+      h.solver.name = name;
+      helmholtz_[a] = std::make_unique<HelmholtzSolver>(ops_.component_box(a), c, h);
+    }
   }
-  poisson_ = std::make_unique<PoissonSolver>(ops_.scalar_box(), options_.poisson);
+  if (fourier_)
+    fourier_poisson_ = std::make_unique<FourierSolver>(ops_.scalar_box(), Correction::none, 0.0, -1.0, options_.poisson.solver.name);
+  else
+    poisson_ = std::make_unique<PoissonSolver>(ops_.scalar_box(), options_.poisson);
+}
+
+const char* to_string(FluidSolvers solvers) {
+  switch (solvers) {
+    case FluidSolvers::automatic: return "automatic";
+    case FluidSolvers::multigrid: return "multigrid";
+    case FluidSolvers::fourier: return "fourier";
+  }
+  return "?";
+}
+
+const HelmholtzSolver& NavierStokesSolver::helmholtz(int a) const {
+  require(!fourier_ && helmholtz_[a], "NavierStokesSolver::helmholtz", a, "the iterative solvers exist on the multigrid path only");
+  return *helmholtz_[a];
+}
+
+const PoissonSolver& NavierStokesSolver::poisson() const {
+  require(!fourier_, "NavierStokesSolver::poisson", "fourier", "the iterative solvers exist on the multigrid path only");
+  return *poisson_;
+}
+
+const StaggeredLaplacian& NavierStokesSolver::velocity_laplacian(int a) const {
+  return fourier_ ? fourier_helmholtz_[a]->laplacian() : helmholtz_[a]->laplacian();
+}
+
+const StaggeredLaplacian& NavierStokesSolver::pressure_laplacian() const {
+  return fourier_ ? fourier_poisson_->laplacian() : poisson_->laplacian();
 }
 
 FluidState NavierStokesSolver::zero_state(double t) const {
@@ -121,7 +162,7 @@ void NavierStokesSolver::stage(FluidState& state, const VectorField& u_src, doub
     }
   const VelocityBoundaryData& gsrc = boundary_data(t_src);
   for (int a = 0; a < dims; ++a) {
-    const StaggeredLaplacian& L = helmholtz_[a]->laplacian();
+    const StaggeredLaplacian& L = velocity_laplacian(a);
     const index_t n = L.size();
     // tmp = k (f / rho - G p / rho - N)
     dvec& src = tmp_[a];
@@ -140,6 +181,10 @@ void NavierStokesSolver::stage(FluidState& state, const VectorField& u_src, doub
 
   t0 = clock_type::now();
   for (int a = 0; a < dims; ++a) {
+    if (fourier_) {
+      fourier_helmholtz_[a]->solve(rhs_[a], ustar_[a]);
+      continue;
+    }
     ustar_[a] = u_src[a];  // initial guess
     stats.helmholtz_iterations[s][a] = helmholtz_[a]->solve(rhs_[a], ustar_[a]).iterations;
   }
@@ -152,10 +197,14 @@ void NavierStokesSolver::stage(FluidState& state, const VectorField& u_src, doub
   stats.seconds_projection += seconds_since(t0);
 
   t0 = clock_type::now();
-  if (q_.size() != div_.size()) q_.assign(div_.size(), 0.0);
-  // initial guess: the last pseudo-pressure, phi / k
-  for_each_index(index_t(q_.size()), Scaled{ptr(state.phi[s]), 1.0 / k, ptr(q_)});
-  stats.poisson_iterations[s] = poisson_->solve(div_, q_).iterations;
+  if (fourier_) {
+    fourier_poisson_->solve(div_, q_);
+  } else {
+    if (q_.size() != div_.size()) q_.assign(div_.size(), 0.0);
+    // initial guess: the last pseudo-pressure, phi / k
+    for_each_index(index_t(q_.size()), Scaled{ptr(state.phi[s]), 1.0 / k, ptr(q_)});
+    stats.poisson_iterations[s] = poisson_->solve(div_, q_).iterations;
+  }
   stats.seconds_poisson += seconds_since(t0);
 
   t0 = clock_type::now();
@@ -165,7 +214,7 @@ void NavierStokesSolver::stage(FluidState& state, const VectorField& u_src, doub
     u[a] = ustar_[a];
     blas::axpy(-k, gp_[a], u[a]);
   }
-  poisson_->laplacian().apply(q_, lq_);
+  pressure_laplacian().apply(q_, lq_);
   blas::axpy(rho, q_, state.p);
   blas::axpy(-theta * k * mu, lq_, state.p);
   for_each_index(index_t(q_.size()), Scaled{ptr(q_), k, ptr(state.phi[s])});  // phi = k q

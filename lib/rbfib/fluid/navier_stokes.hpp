@@ -23,6 +23,7 @@
 // from this derivation; we use the derived sign (reference/fluid.yaml records the choice).
 //
 // Units (CGS): u cm/s, p dyn/cm^2, f dyn/cm^3, rho g/cm^3, mu poise, t and dt in s.
+#include "rbfib/fluid/fourier_solver.hpp"
 #include "rbfib/fluid/helmholtz.hpp"
 #include "rbfib/fluid/mac_operators.hpp"
 #include "rbfib/fluid/poisson.hpp"
@@ -39,6 +40,13 @@ enum class TimeIntegrator { backward_forward_euler, peskin_two_stage };
 
 const char* to_string(TimeIntegrator integrator);
 
+/// How the Helmholtz and Poisson systems of a stage are solved: multigrid-preconditioned CG
+/// (any boundary combination), the direct Fourier solver (x and z periodic, y periodic or walls:
+/// fourier_solver.hpp), or automatic: Fourier wherever the grid allows it, else multigrid.
+enum class FluidSolvers { automatic, multigrid, fourier };
+
+const char* to_string(FluidSolvers solvers);
+
 struct FluidParameters {
   double density = 1.0;     ///< rho (g/cm^3)
   double viscosity = 1e-3;  ///< mu (poise)
@@ -47,8 +55,9 @@ struct FluidParameters {
 struct NavierStokesOptions {
   TimeIntegrator integrator = TimeIntegrator::backward_forward_euler;
   double dt = 0.0;  ///< time step (s)
-  HelmholtzOptions helmholtz;
-  PoissonOptions poisson;
+  FluidSolvers solvers = FluidSolvers::automatic;
+  HelmholtzOptions helmholtz;  ///< for the multigrid path
+  PoissonOptions poisson;      ///< for the multigrid path
 };
 
 /// Velocity boundary data gamma(a, d, side, t, x, y, z) for component a on face (d, side), as in
@@ -67,8 +76,8 @@ struct FluidState {
 
 struct StepStats {
   int stages = 0;
-  std::array<std::array<int, 3>, 2> helmholtz_iterations{};
-  std::array<int, 2> poisson_iterations{};
+  std::array<std::array<int, 3>, 2> helmholtz_iterations{};  ///< 0 for a direct (Fourier) solve
+  std::array<int, 2> poisson_iterations{};                    ///< 0 for a direct (Fourier) solve
   double max_divergence = 0.0;  ///< max |D u^{n+1}| after the step (1/s)
   double seconds_advection = 0.0, seconds_helmholtz = 0.0, seconds_poisson = 0.0, seconds_projection = 0.0,
          seconds_other = 0.0;
@@ -101,8 +110,11 @@ class NavierStokesSolver {
   const MacGrid& grid() const { return grid_; }
   const FluidParameters& fluid() const { return fluid_; }
   const NavierStokesOptions& options() const { return options_; }
-  const HelmholtzSolver& helmholtz(int a) const { return *helmholtz_[a]; }
-  const PoissonSolver& poisson() const { return *poisson_; }
+  /// Whether the stages use the direct Fourier solvers (else multigrid-preconditioned CG).
+  bool fourier() const { return fourier_; }
+  /// The iterative solvers; only on the multigrid path (InputError otherwise).
+  const HelmholtzSolver& helmholtz(int a) const;
+  const PoissonSolver& poisson() const;
 
  private:
   void stage(FluidState& state, const VectorField& u_src, double t_src, const VectorField& u_adv, double t_adv,
@@ -113,8 +125,13 @@ class NavierStokesSolver {
   NavierStokesOptions options_;
   BoundaryVelocity boundary_;
   MacOperators ops_;
+  bool fourier_ = false;
   std::array<std::unique_ptr<HelmholtzSolver>, 3> helmholtz_;
   std::unique_ptr<PoissonSolver> poisson_;
+  std::array<std::unique_ptr<FourierSolver>, 3> fourier_helmholtz_;
+  std::unique_ptr<FourierSolver> fourier_poisson_;
+  const StaggeredLaplacian& velocity_laplacian(int a) const;
+  const StaggeredLaplacian& pressure_laplacian() const;
   mutable std::vector<std::pair<double, VelocityBoundaryData>> cache_;
   // workspace
   VectorField adv_, gp_, rhs_, ustar_, tmp_, u_half_;
