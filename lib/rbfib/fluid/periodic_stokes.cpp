@@ -1,0 +1,53 @@
+#include "rbfib/fluid/periodic_stokes.hpp"
+
+#include "rbfib/core/error.hpp"
+#include "rbfib/linalg/blas.hpp"
+
+#include <thrust/reduce.h>
+
+#include <cmath>
+#include <string>
+
+namespace rbfib {
+
+PeriodicStokesSolver::PeriodicStokesSolver(const MacGrid& grid, double viscosity, double alpha)
+    : ops_(grid), mu_(viscosity), alpha_(alpha) {
+  for (int d = 0; d < grid.dims; ++d)
+    require(grid.periodic(d), std::string("grid.") + "xyz"[d] + ".boundary", "walls",
+            "the periodic Stokes solver needs every axis periodic");
+  require(std::isfinite(viscosity) && viscosity > 0, "fluid.viscosity", viscosity, "must be positive and finite (poise)");
+  require(std::isfinite(alpha) && alpha >= 0, "stokes.alpha (rho / dt)", alpha, "must be finite and >= 0 (g/(cm^3 s))");
+  for (int a = 0; a < grid.dims; ++a)
+    velocity_[a] = std::make_unique<FourierSolver>(ops_.component_box(a), Correction::none, alpha, -viscosity,
+                                                   "stokes u" + std::to_string(a));
+  pressure_ = std::make_unique<FourierSolver>(ops_.scalar_box(), Correction::none, 0.0, -1.0, "stokes pressure");
+}
+
+std::array<double, 3> PeriodicStokesSolver::solve(const VectorField& f, VectorField& u, dvec& p,
+                                                  std::array<double, 3> mean_velocity) const {
+  const int dims = ops_.dims();
+  for (int a = 0; a < dims; ++a)
+    require(index_t(f[a].size()) == ops_.component_box(a).size(), "stokes force[" + std::to_string(a) + "].size",
+            f[a].size(), "must be " + to_text(ops_.component_box(a).size()));
+  // L_c p = D f  <=>  -L_c p = -D f (the pressure solver's form; D f has zero mean on a periodic grid).
+  ops_.divergence(f, nullptr, div_);
+  double* pd = ptr(div_);
+  for_each_index(index_t(div_.size()), [=] RBFIB_HD (index_t i) { pd[i] = -pd[i]; });
+  pressure_->solve(div_, p);
+  // (alpha - mu L) u = f - G p, per component.
+  ops_.gradient(p, rhs_);
+  std::array<double, 3> removed{0, 0, 0};
+  for (int a = 0; a < dims; ++a) {
+    blas::xpby(f[a], -1.0, rhs_[a]);  // rhs = f - G p
+    if (alpha_ == 0) removed[a] = thrust::reduce(f[a].begin(), f[a].end(), 0.0) / double(f[a].size());
+    velocity_[a]->solve(rhs_[a], u[a]);  // alpha = 0: mean removed, u mean-free
+    if (alpha_ == 0 && mean_velocity[a] != 0) {
+      double* pu = ptr(u[a]);
+      const double m = mean_velocity[a];
+      for_each_index(index_t(u[a].size()), [=] RBFIB_HD (index_t i) { pu[i] += m; });
+    }
+  }
+  return removed;
+}
+
+}  // namespace rbfib
