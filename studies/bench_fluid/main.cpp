@@ -15,6 +15,7 @@
 //     whole-blood grid 80 x 60 x 80 with h = 0.2 um), both integrators, dt = 50 ns (Section 5.2):
 //     one warm-up step, then the median over repeats of each component's time.
 #include "common/study.hpp"
+#include "poisson_peers.hpp"
 
 #include "rbfib/core/units.hpp"
 #include "rbfib/fluid/navier_stokes.hpp"
@@ -207,6 +208,26 @@ int main(int argc, char** argv) {
           log(opt, m.str());
         }
       }
+    }
+    // 4. The channel Poisson solve alone, on the whole-blood grid, by every solver at hand.
+    {
+      Json peers = table({"solver", "seconds", "iterations", "relative_residual", "max_rel_diff_vs_fourier"}, {"", "s", "", "", ""});
+      const Box box = MacOperators(whole_blood()).scalar_box();
+      const double rtol = 1e-11;
+      double t_fourier = 0, t_hypre = 0;
+      for (const PoissonPeer& r : compare_poisson_solvers(box, repeats + 2, rtol)) {
+        peers["rows"].push(row({r.solver, r.seconds, r.iterations, r.relative_residual, r.max_rel_diff_vs_fourier}));
+        if (r.solver.rfind("Fourier", 0) == 0) t_fourier = r.seconds;
+        if (r.solver.rfind("hypre", 0) == 0) t_hypre = r.seconds;
+        std::ostringstream m;
+        m << "poisson 80x60x80, " << r.solver << ": " << r.seconds << " s, " << r.iterations << " iterations, residual "
+          << r.relative_residual << ", vs Fourier " << r.max_rel_diff_vs_fourier;
+        log(opt, m.str());
+      }
+      par["poisson_peer_rtol"] = rtol;
+      par["hypre"] = have_hypre() ? "found (Debian's libhypre-dev)" : "not found: no PFMG row";
+      results["tables"]["poisson_solvers"] = peers;
+      if (t_hypre > 0) results["values"]["fourier_speedup_over_hypre_pfmg"] = t_hypre / t_fourier;
     }
     results["values"]["whole_blood_fourier_speedup"] = whole_blood_speedup;
     results["values"]["whole_blood_fourier_poisson_share"] = whole_blood_fourier_share;
