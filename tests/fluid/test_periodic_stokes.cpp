@@ -4,9 +4,7 @@
 // an exact periodic Stokes flow.
 #include "../common/random_field.hpp"
 #include "rbfib/core/error.hpp"
-#include "rbfib/fluid/helmholtz.hpp"
 #include "rbfib/fluid/periodic_stokes.hpp"
-#include "rbfib/fluid/poisson.hpp"
 #include "rbfib/linalg/blas.hpp"
 
 #include <gtest/gtest.h>
@@ -72,29 +70,15 @@ TEST(PeriodicStokes, EqualsTheIterativeSolvesOfTheSameSystem) {
   const double mu = 0.5, alpha = 20.0;
   PeriodicStokesSolver S(g, mu, alpha);
   const MacOperators& ops = S.operators();
-  VectorField f, u, Gp;
+  VectorField f, u;
   for (int a = 0; a < 3; ++a) f[a] = random_vector(ops.component_box(a).size(), 50 + a);
   dvec p;
   S.solve(f, u, p);
-  PoissonOptions po;
-  po.solver = SolverOptions{"poisson", 1e-13, 500};
-  PoissonSolver P(ops.scalar_box(), po);
-  dvec b, q(ops.scalar_box().size(), 0.0);
-  ops.divergence(f, nullptr, b);
-  blas::xpby(dvec(b.size(), 0.0), -1.0, b);
-  P.solve(b, q);
+  VectorField ui;
+  dvec q;
+  S.solve_iteratively(f, ui, q, 1e-13);
   EXPECT_LT(max_abs_diff(q, p), 1e-10 * blas::norm_inf(p));
-  ops.gradient(q, Gp);
-  HelmholtzOptions ho;
-  ho.solver = SolverOptions{"helmholtz", 1e-13, 1000};
-  for (int a = 0; a < 3; ++a) {
-    HelmholtzSolver H(ops.component_box(a), mu / alpha, ho);
-    dvec rhs = f[a], x(rhs.size(), 0.0);
-    blas::axpy(-1.0, Gp[a], rhs);
-    blas::xpby(dvec(rhs.size(), 0.0), 1.0 / alpha, rhs);
-    H.solve(rhs, x);
-    EXPECT_LT(max_abs_diff(x, u[a]), 1e-10 * blas::norm_inf(u[a])) << "u" << a;
-  }
+  for (int a = 0; a < 3; ++a) EXPECT_LT(max_abs_diff(ui[a], u[a]), 1e-10 * blas::norm_inf(u[a])) << "u" << a;
 }
 
 TEST(PeriodicStokes, ConvergesAtSecondOrderToAnExactFlow) {

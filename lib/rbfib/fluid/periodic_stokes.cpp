@@ -1,6 +1,8 @@
 #include "rbfib/fluid/periodic_stokes.hpp"
 
 #include "rbfib/core/error.hpp"
+#include "rbfib/fluid/helmholtz.hpp"
+#include "rbfib/fluid/poisson.hpp"
 #include "rbfib/linalg/blas.hpp"
 
 #include <thrust/reduce.h>
@@ -48,6 +50,30 @@ std::array<double, 3> PeriodicStokesSolver::solve(const VectorField& f, VectorFi
     }
   }
   return removed;
+}
+
+void PeriodicStokesSolver::solve_iteratively(const VectorField& f, VectorField& u, dvec& p, double rtol) const {
+  require(alpha_ > 0, "stokes.alpha (rho / dt)", alpha_, "must be > 0 for the iterative solve (the steady operator is singular)");
+  PoissonOptions po;
+  po.solver = SolverOptions{"stokes pressure (PCG)", rtol, 1000};
+  PoissonSolver P(ops_.scalar_box(), po);
+  dvec b;
+  ops_.divergence(f, nullptr, b);
+  blas::xpby(dvec(b.size(), 0.0), -1.0, b);  // -D f
+  p.assign(b.size(), 0.0);
+  P.solve(b, p);
+  VectorField Gp;
+  ops_.gradient(p, Gp);
+  HelmholtzOptions ho;
+  ho.solver = SolverOptions{"stokes velocity (PCG)", rtol, 2000};
+  for (int a = 0; a < ops_.dims(); ++a) {
+    HelmholtzSolver H(ops_.component_box(a), mu_ / alpha_, ho);
+    dvec rhs = f[a];
+    blas::axpy(-1.0, Gp[a], rhs);
+    blas::xpby(dvec(rhs.size(), 0.0), 1.0 / alpha_, rhs);  // (f - G p) / alpha
+    u[a].assign(rhs.size(), 0.0);
+    H.solve(rhs, u[a]);
+  }
 }
 
 }  // namespace rbfib

@@ -33,6 +33,11 @@ class PeriodicStokesSolver {
   std::array<double, 3> solve(const VectorField& f, VectorField& u, dvec& p,
                               std::array<double, 3> mean_velocity = {0, 0, 0}) const;
 
+  /// The same system (alpha > 0) by the iterative solvers, for verification: -L_c p = -D f by
+  /// multigrid-preconditioned CG, then (I - (mu/alpha) L) u = (f - G p) / alpha by Chebyshev-
+  /// preconditioned CG, both to ||r|| <= rtol ||b||.
+  void solve_iteratively(const VectorField& f, VectorField& u, dvec& p, double rtol) const;
+
   const MacOperators& operators() const { return ops_; }
   double viscosity() const { return mu_; }
   double alpha() const { return alpha_; }
