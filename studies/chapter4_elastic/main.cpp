@@ -1,0 +1,211 @@
+// Reproduces seed Sec. 4.2.2.1, Tables 4.3 and 4.4: a Skalak sphere, stretched by 1.1 in z and
+// compressed by 1.1 in y, relaxes in a 16 um triply periodic box at rest; successive grids
+// h = 1, 0.5, 0.25 um (0.125 at full scale) with n_d = 625 data sites and n_s = 220 x 4^k sample
+// sites, dt = 1.6, 0.4, 0.1 (0.025) us, to t = 16 us. Errors between successive grids:
+//   velocity: u_h - (cubic spline of u_{h/2} evaluated at the points of grid h), per component;
+//   positions: X_h - X_{h/2} at the 625 data sites (the same sites on every grid).
+// The coupled step is sim::ImmersedBoundary (the seed's coupling (a)-(g)), backward-forward Euler,
+// the B3 kernel; the fluid is plasma, rho = 1 g/cm^3, mu = 0.1 cP.
+//
+// Run:   build/studies/study_chapter4_elastic --scale quick --out runs/chapter4_elastic
+#include "common/study.hpp"
+#include "rbfib/cells/presets.hpp"
+#include "rbfib/core/error.hpp"
+#include "rbfib/core/units.hpp"
+#include "rbfib/linalg/blas.hpp"
+#include "rbfib/sim/ib_step.hpp"
+
+#include <chrono>
+#include <cmath>
+
+using namespace rbfib;
+namespace st = rbfib::study;
+using st::Json;
+
+namespace {
+
+/// Values at the midpoints x_{i+1/2} of a periodic cubic spline through y_0..y_{n-1} (spacing h):
+/// the second derivatives solve the cyclic system M_{i-1} + 4 M_i + M_{i+1} = 6 (y_{i-1} - 2 y_i
+/// + y_{i+1}) / h^2 (Sherman-Morrison on the Thomas algorithm), and
+/// s(x_{i+1/2}) = (y_i + y_{i+1}) / 2 - h^2 (M_i + M_{i+1}) / 16.
+std::vector<double> periodic_spline_midpoints(const std::vector<double>& y, double h) {
+  const int n = int(y.size());
+  std::vector<double> r(n), M(n), mid(n);
+  for (int i = 0; i < n; ++i) r[i] = 6 * (y[(i + n - 1) % n] - 2 * y[i] + y[(i + 1) % n]) / (h * h);
+  // Cyclic tridiagonal (1, 4, 1): A = T + u v^T with T's corner-corrected diagonal.
+  auto thomas = [n](std::vector<double> d, std::vector<double> b) {  // sub = super = 1
+    std::vector<double> c(n);
+    c[0] = 1 / d[0];
+    b[0] /= d[0];
+    for (int i = 1; i < n; ++i) {
+      const double den = d[i] - c[i - 1];
+      c[i] = 1 / den;
+      b[i] = (b[i] - b[i - 1]) / den;
+    }
+    for (int i = n - 2; i >= 0; --i) b[i] -= c[i] * b[i + 1];
+    return b;
+  };
+  const double gamma = -4;
+  std::vector<double> d(n, 4.0), u(n, 0.0);
+  d[0] = 4 - gamma;
+  d[n - 1] = 4 - 1.0 / gamma;
+  u[0] = gamma;
+  u[n - 1] = 1;
+  const std::vector<double> x = thomas(d, r), z = thomas(d, u);
+  const double fact = (x[0] + x[n - 1] / gamma) / (1 + z[0] + z[n - 1] / gamma);
+  for (int i = 0; i < n; ++i) M[i] = x[i] - fact * z[i];
+  for (int i = 0; i < n; ++i) mid[i] = 0.5 * (y[i] + y[(i + 1) % n]) - h * h * (M[i] + M[(i + 1) % n]) / 16;
+  return mid;
+}
+
+/// The fine component (n_f^3, spacing h_f) evaluated at the points of the coarse component
+/// (n_f/2 per axis): along its own axis a coarse face coincides with every second fine face
+/// (index 2 i + 1); along the others a coarse centre is the midpoint of fine centres 2 i and 2 i + 1,
+/// so a periodic cubic spline of the fine values gives it.
+std::vector<double> fine_at_coarse(const host_vector<double>& fine, int nf, double hf, int a) {
+  const int nc = nf / 2;
+  std::vector<double> cur(fine.begin(), fine.end());
+  int n[3] = {nf, nf, nf};
+  for (int d = 0; d < 3; ++d) {
+    const int m[3] = {d == 0 ? nc : n[0], d == 1 ? nc : n[1], d == 2 ? nc : n[2]};
+    std::vector<double> next(std::size_t(m[0]) * m[1] * m[2]);
+    const int s[3] = {1, n[0], n[0] * n[1]};
+    const int t[3] = {1, m[0], m[0] * m[1]};
+    // Line by line along d.
+    const int e1 = (d + 1) % 3, e2 = (d + 2) % 3;
+    for (int q2 = 0; q2 < n[e2]; ++q2)
+      for (int q1 = 0; q1 < n[e1]; ++q1) {
+        std::vector<double> line(n[d]);
+        for (int p = 0; p < n[d]; ++p) line[p] = cur[std::size_t(p) * s[d] + std::size_t(q1) * s[e1] + std::size_t(q2) * s[e2]];
+        std::vector<double> out(nc);
+        if (d == a) {
+          for (int i = 0; i < nc; ++i) out[i] = line[2 * i + 1];
+        } else {
+          const std::vector<double> mid = periodic_spline_midpoints(line, hf);
+          for (int i = 0; i < nc; ++i) out[i] = mid[2 * i];
+        }
+        for (int i = 0; i < nc; ++i) next[std::size_t(i) * t[d] + std::size_t(q1) * t[e1] + std::size_t(q2) * t[e2]] = out[i];
+      }
+    cur.swap(next);
+    n[d] = nc;
+  }
+  return cur;
+}
+
+struct Run {
+  double h_um = 0, dt_us = 0;
+  index_t n_sample = 0;
+  std::array<host_vector<double>, 3> u;  // final velocity (cm/s)
+  std::vector<double> X;                 // final data-site positions (cm)
+  double volume0 = 0, volume = 0, seconds = 0, seconds_per_step = 0;
+  int steps = 0;
+};
+
+Run relax(int cells_per_axis, double dt, index_t n_sample, double radius, double t_end, const st::Options& opt) {
+  const double L = 16 * units::um;
+  const MacGrid g = make_mac_grid(3, {cells_per_axis, cells_per_axis, cells_per_axis}, {L, L, L},
+                                  {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
+  NavierStokesOptions o;
+  o.dt = dt;
+  sim::ImmersedBoundary ib(g, FluidParameters{1.0, 0.1 * units::cP}, o, {}, sim::IbOptions{});
+  cells::Placement p;
+  p.center = {8 * units::um, 8 * units::um, 8 * units::um};
+  p.stretch = {1.0, 1 / 1.1, 1.1};
+  ib.add(cells::Batch(cells::skalak_sphere(radius, 625, n_sample), {p}));
+  Run r;
+  r.h_um = g.h(0) / units::um;
+  r.dt_us = dt / units::us;
+  r.n_sample = n_sample;
+  cells::CellForces f;
+  cells::compute_forces(ib.batch(0), f);
+  r.volume0 = f.cells.volume[0];
+  r.steps = int(std::lround(t_end / dt));
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int n = 0; n < r.steps; ++n) ib.step();
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.seconds_per_step = r.seconds / r.steps;
+  cells::compute_forces(ib.batch(0), f);
+  r.volume = f.cells.volume[0];
+  for (int a = 0; a < 3; ++a) r.u[a] = ib.fluid_state().u[a];
+  r.X = ib.batch(0).positions_host();
+  st::log(opt, "h = " + to_text(r.h_um) + " um, dt = " + to_text(r.dt_us) + " us, n_s = " + to_text(n_sample) + ": " +
+                   to_text(r.steps) + " steps in " + to_text(r.seconds) + " s, volume change " +
+                   to_text((r.volume - r.volume0) / r.volume0));
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return st::run_main("chapter4_elastic", [&] {
+    const st::Options opt = st::parse_command_line(argc, argv, "chapter4_elastic",
+                                                   "Sec. 4.2.2.1, Tables 4.3-4.4: a stretched Skalak sphere relaxing, successive grids");
+    const bool full = opt.scale == st::Scale::full;
+
+    // ---- 1. Parameters -----------------------------------------------------------------------
+    // The seed does not state the sphere's radius: n_s = 220 sample sites about h / 1.1 apart at
+    // h = 1 um give an area of 220 (1/1.1)^2 um^2, R = 3.80 um.
+    const double radius = std::sqrt(220.0 / (1.1 * 1.1) / (4 * 3.14159265358979323846)) * units::um;
+    const double t_end = 16 * units::us;
+    std::vector<int> grids = {16, 32, 64};
+    if (full) grids.push_back(128);
+    Json results = st::make_results(opt);
+    Json& P = results["parameters"];
+    P["box_um"] = "16 x 16 x 16, triply periodic, fluid at rest";
+    P["radius_um"] = radius / units::um;
+    P["radius_source"] = "not stated in the seed: from n_s = 220 sites about h/1.1 apart at h = 1 um";
+    P["moduli"] = "Skalak E = 2.5e-3 dyn/cm, G = 2.5e-1 dyn/cm (Sec. 2.2)";
+    P["initial_deformation"] = "stretch 1.1 in z, compress 1.1 in y";
+    P["t_end_us"] = t_end / units::us;
+    P["fluid"] = "rho = 1 g/cm^3, mu = 0.1 cP";
+    P["kernel_integrator_coupling"] = "B3 kernel, backward-forward Euler, the seed's coupling (a)-(g)";
+    P["data_sites"] = 625;
+
+    // ---- 2. One run per grid -----------------------------------------------------------------
+    std::vector<Run> runs;
+    for (std::size_t k = 0; k < grids.size(); ++k) {
+      const double dt = 1.6 * units::us / std::pow(4.0, double(k));
+      runs.push_back(relax(grids[k], dt, index_t(220) << (2 * k), radius, t_end, opt));
+    }
+
+    // ---- 3. Errors between successive grids (Tables 4.3, 4.4) --------------------------------
+    Json tu = st::table({"h_um", "dt_us", "u_err_2", "u_err_inf", "seconds"}, {"um", "us", "cm/s", "cm/s", "s"});
+    Json tx = st::table({"h_um", "n_sample", "X_err_2", "X_err_inf", "seconds"}, {"um", "", "um", "um", "s"});
+    Json tv = st::table({"h_um", "volume_change_rel", "seconds_per_step"}, {"um", "", "s"});
+    double worst_volume = 0;
+    for (std::size_t k = 0; k + 1 < runs.size(); ++k) {
+      const Run &c = runs[k], &f = runs[k + 1];
+      const int nf = grids[k + 1];
+      const double hf = f.h_um * units::um, hc = c.h_um * units::um;
+      double s2 = 0, sinf = 0;
+      for (int a = 0; a < 3; ++a) {
+        const std::vector<double> fc = fine_at_coarse(f.u[a], nf, hf, a);
+        for (std::size_t i = 0; i < fc.size(); ++i) {
+          const double e = c.u[a][i] - fc[i];
+          s2 += e * e * hc * hc * hc;
+          sinf = std::max(sinf, std::abs(e));
+        }
+      }
+      const double L3 = std::pow(16 * units::um, 3);
+      double x2 = 0, xinf = 0;
+      for (std::size_t i = 0; i < c.X.size(); ++i) {
+        const double e = (c.X[i] - f.X[i]) / units::um;
+        x2 += e * e;
+        xinf = std::max(xinf, std::abs(e));
+      }
+      tu["rows"].push(Json::Array{Json(c.h_um), Json(c.dt_us), Json(std::sqrt(s2 / L3)), Json(sinf), Json(c.seconds)});
+      tx["rows"].push(Json::Array{Json(c.h_um), Json(double(c.n_sample)), Json(std::sqrt(x2 / double(c.X.size()))), Json(xinf), Json(c.seconds)});
+    }
+    for (const Run& r : runs) {
+      const double dv = (r.volume - r.volume0) / r.volume0;
+      worst_volume = std::max(worst_volume, std::abs(dv));
+      tv["rows"].push(Json::Array{Json(r.h_um), Json(dv), Json(r.seconds_per_step)});
+    }
+    results["tables"]["table43_velocity"] = tu;
+    results["tables"]["table44_positions"] = tx;
+    results["tables"]["volume"] = tv;
+    results["values"]["max_volume_change_rel"] = worst_volume;
+    st::write_results(opt, results);
+    return 0;
+  });
+}
