@@ -13,6 +13,7 @@
 #include <thrust/reduce.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace rbfib::sim {
 namespace {
@@ -178,6 +179,55 @@ TEST(IbStep, TheStoppingConditionFiresWithItsNumbersAndKeepsTheState) {
   }
   EXPECT_EQ(max_abs_diff(ib.batch(0).state().storage(), before), 0.0);
   EXPECT_EQ(ib.time(), 0.0);
+}
+
+/// Data-site positions of a stretched sphere after T = 2 us with step dt, coupling c.
+std::vector<double> relaxed(double dt, TimeIntegrator ti, Coupling c) {
+  const MacGrid g = make_mac_grid(3, {16, 16, 16}, {16 * um, 16 * um, 16 * um}, {MB::periodic, MB::periodic, MB::periodic});
+  NavierStokesOptions o;
+  o.dt = dt;
+  o.integrator = ti;
+  IbOptions io;
+  io.coupling = c;
+  ImmersedBoundary ib(g, FluidParameters{1.0, 0.1 * units::cP}, o, {}, io);
+  cells::Placement p = at(8, 8, 8);
+  p.stretch = {1.0, 1 / 1.1, 1.1};
+  ib.add(cells::Batch(sphere(), {p}));
+  const int steps = int(std::lround(2 * units::us / dt));
+  for (int n = 0; n < steps; ++n) ib.step();
+  return ib.batch(0).positions_host();
+}
+
+TEST(IbStep, TemporalOrdersOfTheTwoCouplings) {
+  // Differences of the positions between dt and dt/2 (dt = 0.2, 0.1, 0.05 us) fall as dt^p: the
+  // seed's coupling interpolates u^{n+1} at X^n, first order (p = 1 +- 0.25, with either fluid
+  // scheme); the midpoint coupling with Peskin's scheme is second order (p >= 1.7).
+  auto orders = [](TimeIntegrator ti, Coupling c) {
+    std::vector<std::vector<double>> X;
+    for (double dt : {0.2, 0.1, 0.05, 0.025}) X.push_back(relaxed(dt * units::us, ti, c));
+    std::vector<double> d;
+    for (std::size_t k = 0; k + 1 < X.size(); ++k) {
+      double m = 0;
+      for (std::size_t i = 0; i < X[k].size(); ++i) m = std::max(m, std::abs(X[k][i] - X[k + 1][i]));
+      d.push_back(m);
+    }
+    return std::vector<double>{std::log2(d[0] / d[1]), std::log2(d[1] / d[2])};
+  };
+  const auto seed_bfe = orders(TimeIntegrator::backward_forward_euler, Coupling::seed);
+  const auto seed_peskin = orders(TimeIntegrator::peskin_two_stage, Coupling::seed);
+  const auto midpoint = orders(TimeIntegrator::peskin_two_stage, Coupling::midpoint);
+  EXPECT_NEAR(seed_bfe[1], 1.0, 0.25);
+  EXPECT_NEAR(seed_peskin[1], 1.0, 0.25);
+  EXPECT_GE(midpoint[1], 1.7);
+  std::printf("orders: seed+BFE %.3f %.3f, seed+Peskin %.3f %.3f, midpoint+Peskin %.3f %.3f\n", seed_bfe[0], seed_bfe[1],
+              seed_peskin[0], seed_peskin[1], midpoint[0], midpoint[1]);
+  // The midpoint coupling needs the midpoint velocity of Peskin's scheme.
+  NavierStokesOptions o;
+  o.dt = 1e-7;
+  IbOptions io;
+  io.coupling = Coupling::midpoint;
+  const MacGrid g = make_mac_grid(3, {16, 16, 16}, {16 * um, 16 * um, 16 * um}, {MB::periodic, MB::periodic, MB::periodic});
+  EXPECT_THROW(ImmersedBoundary(g, FluidParameters{1.0, 0.1 * units::cP}, o, {}, io), InputError);
 }
 
 }  // namespace

@@ -97,6 +97,9 @@ class NavierStokesSolver {
   /// that does not converge, naming it.
   StepStats step(FluidState& state, const VectorField* f = nullptr);
 
+  /// u^{n+1/2} of the last step of Peskin's two-stage scheme (its first stage); empty before one.
+  const VectorField& midpoint_velocity() const { return u_half_; }
+
   /// Time at which step() expects f, for a step from time t.
   double force_time(double t) const;
 

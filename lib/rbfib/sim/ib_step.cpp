@@ -21,10 +21,18 @@ double seconds_since(clock_type::time_point& t0) {
   t0 = t1;
   return s;
 }
+/// Index of the first entry that is NaN or Inf, or -1.
+index_t first_non_finite(const dvec& x) {
+  const auto bad = thrust::find_if(x.begin(), x.end(), [] RBFIB_HD (double v) { return !((v - v) == 0.0); });
+  return bad == x.end() ? -1 : index_t(bad - x.begin());
+}
+
 std::array<Box, 3> component_boxes(const MacOperators& ops) {
   return {ops.component_box(0), ops.component_box(1), ops.component_box(2)};
 }
 }  // namespace
+
+const char* to_string(Coupling c) { return c == Coupling::seed ? "seed (a)-(g), first order" : "midpoint, second order"; }
 
 ImmersedBoundary::ImmersedBoundary(const MacGrid& grid, FluidParameters fluid, NavierStokesOptions options,
                                    BoundaryVelocity boundary, IbOptions ib)
@@ -32,6 +40,8 @@ ImmersedBoundary::ImmersedBoundary(const MacGrid& grid, FluidParameters fluid, N
       ib_(component_boxes(ns_.operators()), ib.kernel),
       options_(std::move(ib)) {
   require(grid.dims == 3, "grid.dims", grid.dims, "the immersed-boundary step needs a 3D grid");
+  require(options_.coupling == Coupling::seed || ns_.options().integrator == TimeIntegrator::peskin_two_stage,
+          "ib.coupling", to_string(options_.coupling), "needs Peskin's two-stage fluid scheme (its midpoint velocity)");
   state_ = ns_.zero_state(0.0);
 }
 
@@ -44,9 +54,9 @@ void ImmersedBoundary::positions_of(Entry& e, dvec& X) const {
   const index_t nd = e.batch.type().n_data(), N = e.batch.size(), n = 3 * N * nd;
   X.resize(static_cast<std::size_t>(n));
   thrust::copy(e.batch.state().storage().begin(), e.batch.state().storage().begin() + n, X.begin());
-  const auto bad = thrust::find_if(X.begin(), X.end(), [] RBFIB_HD (double v) { return !((v - v) == 0.0); });
-  if (bad != X.end()) {
-    const index_t k = bad - X.begin(), c = (k % (N * nd)) / nd;
+  const index_t k = first_non_finite(X);
+  if (k >= 0) {
+    const index_t c = (k % (N * nd)) / nd;
     throw NumericalError("cell type '" + e.batch.type().name() + "', cell " + to_text(c) + ": non-finite position at data site " +
                          to_text(k % nd) + " (coordinate " + "xyz"[k / (N * nd)] + ")");
   }
@@ -70,12 +80,13 @@ IbStepReport ImmersedBoundary::step() {
   bool fluid_stepped = false;
   try {
     auto t0 = clock_type::now();
-    // (a) U^n = I u^n at X^n; (b) X* = X^n + dt U^n.
+    // (a) U^n = I u^n at X^n; (b) X* = X^n + dt U^n (midpoint: X^{n+1/2} = X^n + dt/2 U^n).
+    const bool midpoint = options_.coupling == Coupling::midpoint;
     for (Entry& e : batches_) {
       positions_of(e, e.X0);
       interpolate_at(e.X0, e);
       e.X = e.X0;
-      blas::axpy(dt, e.U, e.X);
+      blas::axpy(midpoint ? 0.5 * dt : dt, e.U, e.X);
       thrust::copy(e.X.begin(), e.X.end(), e.batch.state().storage().begin());
     }
     r.seconds_interpolation += seconds_since(t0);
@@ -107,9 +118,17 @@ IbStepReport ImmersedBoundary::step() {
     for (int a = 0; a < 3; ++a)
       if (!blas::all_finite(state_.u[a])) throw NumericalError("non-finite fluid velocity (component " + to_text(a) + ")");
     r.seconds_fluid = seconds_since(t0);
-    // (f) U^{n+1} = I u^{n+1} at X^n; (g) X^{n+1} = X^n + dt U^{n+1}.
+    // (f) U^{n+1} = I u^{n+1} at X^n (midpoint: U^{n+1/2} = I u^{n+1/2} at X^{n+1/2});
+    // (g) X^{n+1} = X^n + dt U.
     for (Entry& e : batches_) {
-      interpolate_at(e.X0, e);
+      if (midpoint) {
+        ib_.interpolate(e.X, ns_.midpoint_velocity(), e.U, options_.interpolation);
+        if (!blas::all_finite(e.U))
+          throw NumericalError("cell type '" + e.batch.type().name() + "': non-finite interpolated velocity");
+        thrust::copy(e.U.begin(), e.U.end(), e.batch.state().storage().begin() + index_t(e.X.size()));
+      } else {
+        interpolate_at(e.X0, e);
+      }
       e.X = e.X0;
       blas::axpy(dt, e.U, e.X);
       thrust::copy(e.X.begin(), e.X.end(), e.batch.state().storage().begin());

@@ -6,7 +6,7 @@
 // velocities are interpolated at the data sites (eq. 2.23). Eulerian side: the Navier-Stokes
 // solver of Sec. 2.1 (either integrator, its force evaluated at the time it asks for).
 //
-// One step from t^n = n dt, the seed's steps (a)-(g), first order in the coupling:
+// Two couplings. Coupling::seed, the seed's steps (a)-(g), first order in the coupling:
 //   (a) U^n     = I u^n at X^n                      (data sites; also the velocity of dissipation)
 //   (b) X*      = X^n + dt U^n
 //   (c) F^{n+1} = the cells' forces at X*           (sample sites, F^ = F dA0, dyn)
@@ -15,7 +15,12 @@
 //                                                    two-stage scheme: the same f in both stages)
 //   (f) U^{n+1} = I u^{n+1} at X^n
 //   (g) X^{n+1} = X^n + dt U^{n+1}
-// Before (e) the stopping condition of eq. 5.4 is checked: the step is refused when
+// Coupling::midpoint, formally second order, with Peskin's two-stage fluid scheme only:
+//   U^n = I u^n at X^n;  X^{n+1/2} = X^n + (dt/2) U^n;  F^{n+1/2} at X^{n+1/2}, spread from there;
+//   the two fluid stages with that f (giving u^{n+1/2} and u^{n+1});
+//   U^{n+1/2} = I u^{n+1/2} at X^{n+1/2};  X^{n+1} = X^n + dt U^{n+1/2}.
+// Dissipation uses U^n in both (the velocity interpolated at the start of the step).
+// Before the fluid step the stopping condition of eq. 5.4 is checked: the step is refused when
 //   dt > (1/4) sqrt(h rho / ||f||_inf),
 // and any failure (that condition, a degenerate or inverted cell, a non-finite force or velocity)
 // raises NumericalError naming the step, the time and the cause, with every state (fluid, cells)
@@ -31,7 +36,11 @@
 
 namespace rbfib::sim {
 
+enum class Coupling { seed, midpoint };
+const char* to_string(Coupling c);
+
 struct IbOptions {
+  Coupling coupling = Coupling::seed;
   std::string kernel = "bspline3";  ///< a name from ib::kernel_names()
   ib::Interpolation interpolation = ib::Interpolation::binned;
   ib::Spreading spreading = ib::Spreading::binned;
