@@ -121,6 +121,23 @@ TEST(IbStep, AStretchedCellLosesElasticEnergyAndKeepsItsVolume) {
   EXPECT_NEAR(f1.cells.volume[0], f0.cells.volume[0], 1e-3 * f0.cells.volume[0]);
 }
 
+TEST(IbStep, AUniformBodyForceAcceleratesThePeriodicBoxUniformly) {
+  // No cells: a body force b in a periodic box gives rho du/dt = b exactly, u = b t / rho, and the
+  // report's kinetic energy is rho/2 |u|^2 V.
+  const MacGrid g = make_mac_grid(3, {8, 8, 8}, {8 * um, 8 * um, 8 * um}, {MB::periodic, MB::periodic, MB::periodic});
+  NavierStokesOptions o;
+  o.dt = 0.1 * units::us;
+  IbOptions io;
+  io.body_force = {8.0e3, 0, 0};  // dyn/cm^3 (the capillary's background force, paper Sec. 4.2)
+  ImmersedBoundary ib(g, FluidParameters{1.0, 0.1 * units::cP}, o, {}, io);
+  IbStepReport r;
+  for (int n = 0; n < 5; ++n) r = ib.step();
+  const double u = 8.0e3 * 5 * 0.1 * units::us;
+  EXPECT_NEAR(blas::norm_inf(ib.fluid_state().u[0]), u, 1e-12 * u);
+  EXPECT_NEAR(r.max_velocity, u, 1e-12 * u);
+  EXPECT_NEAR(r.kinetic_energy, 0.5 * u * u * std::pow(8 * um, 3), 1e-10 * 0.5 * u * u * std::pow(8 * um, 3));
+}
+
 TEST(IbStep, TheSameRunTwiceIsBitwiseIdentical) {
   cells::Placement p = at(8, 8, 8);
   p.stretch = {1.05, 1.0, 1 / 1.05};

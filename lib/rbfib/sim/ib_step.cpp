@@ -91,10 +91,14 @@ IbStepReport ImmersedBoundary::step() {
     }
     r.seconds_interpolation += seconds_since(t0);
     // (c) F^{n+1} at X* (sample sites), with U^n for dissipation.
-    for (Entry& e : batches_) cells::compute_forces(e.batch, e.forces);
+    for (Entry& e : batches_) {
+      cells::compute_forces(e.batch, e.forces);
+      r.elastic_energy += e.forces.energy;
+    }
     r.seconds_forces = seconds_since(t0);
     // (d) f^{n+1} = S F^{n+1} from the sample sites of X*, summed over batches.
-    for (int a = 0; a < 3; ++a) f_[a].assign(static_cast<std::size_t>(ns_.operators().component_box(a).size()), 0.0);
+    for (int a = 0; a < 3; ++a)
+      f_[a].assign(static_cast<std::size_t>(ns_.operators().component_box(a).size()), options_.body_force[a]);
     for (Entry& e : batches_) {
       ib_.spread(e.forces.positions.storage(), e.forces.force.storage(), f_batch_, options_.spreading);
       for (int a = 0; a < 3; ++a) blas::axpy(1.0, f_batch_[a], f_[a]);
@@ -118,6 +122,12 @@ IbStepReport ImmersedBoundary::step() {
     for (int a = 0; a < 3; ++a)
       if (!blas::all_finite(state_.u[a])) throw NumericalError("non-finite fluid velocity (component " + to_text(a) + ")");
     r.seconds_fluid = seconds_since(t0);
+    const MacGrid& grid = ns_.grid();
+    const double cell_volume = grid.h(0) * grid.h(1) * grid.h(2);
+    for (int a = 0; a < 3; ++a) {
+      r.max_velocity = std::max(r.max_velocity, blas::norm_inf(state_.u[a]));
+      r.kinetic_energy += 0.5 * ns_.fluid().density * blas::dot(state_.u[a], state_.u[a]) * cell_volume;
+    }
     // (f) U^{n+1} = I u^{n+1} at X^n (midpoint: U^{n+1/2} = I u^{n+1/2} at X^{n+1/2});
     // (g) X^{n+1} = X^n + dt U.
     for (Entry& e : batches_) {

@@ -45,12 +45,18 @@ struct IbOptions {
   ib::Interpolation interpolation = ib::Interpolation::binned;
   ib::Spreading spreading = ib::Spreading::binned;
   bool stopping_condition = true;   ///< check eq. 5.4 every step
+  /// A uniform body force density added to the spread force every step (dyn/cm^3), e.g. a mean
+  /// pressure gradient driving a channel or a periodic box.
+  std::array<double, 3> body_force{0, 0, 0};
 };
 
 /// What one step did (seconds per component and the eq. 5.4 numbers).
 struct IbStepReport {
   double max_force_density = 0;  ///< ||f||_inf on the grid (dyn/cm^3)
   double dt_bound = 0;           ///< (1/4) sqrt(h rho / ||f||_inf) (s); infinite when f = 0
+  double max_velocity = 0;       ///< max |u_a| after the step (cm/s)
+  double kinetic_energy = 0;     ///< (rho / 2) sum |u|^2 h^3 after the step (erg)
+  double elastic_energy = 0;     ///< the cells' energy at the forces' positions (erg)
   double seconds_interpolation = 0, seconds_forces = 0, seconds_spreading = 0, seconds_fluid = 0;
   StepStats fluid;
 };
