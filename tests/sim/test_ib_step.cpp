@@ -138,6 +138,46 @@ TEST(IbStep, AUniformBodyForceAcceleratesThePeriodicBoxUniformly) {
   EXPECT_NEAR(r.kinetic_energy, 0.5 * u * u * std::pow(8 * um, 3), 1e-10 * 0.5 * u * u * std::pow(8 * um, 3));
 }
 
+TEST(IbStep, TetheredPointsArePulledBackToTheirAnchorsAndPushTheFluid) {
+  // Eq. 2.10 with the endothelium's constants (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm, per point):
+  // points at their anchors stay; points displaced by 0.2 um in x move back towards the anchors,
+  // and the fluid's momentum equals the impulse of the spring forces, sum -k (X* - X') dt.
+  const MacGrid g = make_mac_grid(3, {16, 16, 16}, {16 * um, 16 * um, 16 * um}, {MB::periodic, MB::periodic, MB::periodic});
+  NavierStokesOptions o;
+  o.dt = 50 * units::ns;
+  ImmersedBoundary ib(g, FluidParameters{1.0, 0.1 * units::cP}, o, {}, IbOptions{});
+  const index_t n = 8;
+  host_vector<double> anchors(3 * n), X(3 * n);
+  for (index_t k = 0; k < n; ++k) {
+    const double xyz[3] = {(2.0 + 1.5 * k) * um, (4.0 + 0.7 * k) * um, (9.0 - 0.5 * k) * um};
+    for (int d = 0; d < 3; ++d) anchors[d * n + k] = X[d * n + k] = xyz[d];
+    X[k] += 0.2 * um;  // displaced in x
+  }
+  TetheredPoints still{"still", anchors, anchors, 2.5, 2.5e-7};
+  ib.add(still);
+  ib.add(TetheredPoints{"displaced", X, anchors, 2.5, 2.5e-7});
+  const double h3 = std::pow(um, 3);
+  double impulse = 0;
+  for (int s = 0; s < 10; ++s) {
+    const IbStepReport r = ib.step();
+    (void)r;
+    const dvec& f = ib.force_density()[0];
+    impulse += o.dt * thrust::reduce(f.begin(), f.end(), 0.0) * h3;
+  }
+  const host_vector<double> Xd = ib.points(1).X;
+  for (index_t k = 0; k < n; ++k) {
+    EXPECT_LT(Xd[k] - anchors[k], 0.2 * um) << k;  // moved back
+    EXPECT_GT(Xd[k] - anchors[k], 0.0) << k;       // not past the anchor in 0.5 us
+  }
+  const dvec& u = ib.fluid_state().u[0];
+  const double momentum = thrust::reduce(u.begin(), u.end(), 0.0) * h3;
+  EXPECT_LT(impulse, 0.0);
+  EXPECT_NEAR(momentum, impulse, 1e-10 * std::abs(impulse));
+  // Bad input is named.
+  EXPECT_THROW(ib.add(TetheredPoints{"bad", X, dvec(3, 0.0), 2.5, 0.0}), InputError);
+  EXPECT_THROW(ib.add(TetheredPoints{"bad", X, anchors, -1.0, 0.0}), InputError);
+}
+
 TEST(IbStep, TheSameRunTwiceIsBitwiseIdentical) {
   cells::Placement p = at(8, 8, 8);
   p.stretch = {1.05, 1.0, 1 / 1.05};

@@ -50,6 +50,18 @@ index_t ImmersedBoundary::add(cells::Batch batch) {
   return index_t(batches_.size()) - 1;
 }
 
+index_t ImmersedBoundary::add(TetheredPoints p) {
+  const std::string field = "tethered points '" + p.name + "'";
+  require(p.X.size() % 3 == 0 && !p.X.empty(), field + ": positions size", p.X.size(), "must be a positive multiple of 3");
+  require(p.anchors.size() == p.X.size(), field + ": anchors size", p.anchors.size(), "must equal the positions' size");
+  require(std::isfinite(p.k) && p.k >= 0, field + ": spring constant k (dyn/cm)", p.k, "must be finite and >= 0");
+  require(std::isfinite(p.eta) && p.eta >= 0, field + ": damping eta (dyn s/cm)", p.eta, "must be finite and >= 0");
+  require(first_non_finite(p.X) < 0 && first_non_finite(p.anchors) < 0, field + ": positions and anchors", "NaN or Inf",
+          "must be finite");
+  points_.push_back(PointEntry{std::move(p), {}, {}, {}});
+  return index_t(points_.size()) - 1;
+}
+
 void ImmersedBoundary::positions_of(Entry& e, dvec& X) const {
   const index_t nd = e.batch.type().n_data(), N = e.batch.size(), n = 3 * N * nd;
   X.resize(static_cast<std::size_t>(n));
@@ -75,8 +87,9 @@ IbStepReport ImmersedBoundary::step() {
   const double dt = ns_.options().dt;
   const double t = state_.t;
   // Keep X^n and U at the start: the whole Lagrangian state is restored on failure.
-  std::vector<dvec> saved(batches_.size());
+  std::vector<dvec> saved(batches_.size()), saved_points(points_.size());
   for (std::size_t b = 0; b < batches_.size(); ++b) saved[b] = batches_[b].batch.state().storage();
+  for (std::size_t q = 0; q < points_.size(); ++q) saved_points[q] = points_[q].points.X;
   bool fluid_stepped = false;
   try {
     auto t0 = clock_type::now();
@@ -88,6 +101,18 @@ IbStepReport ImmersedBoundary::step() {
       e.X = e.X0;
       blas::axpy(midpoint ? 0.5 * dt : dt, e.U, e.X);
       thrust::copy(e.X.begin(), e.X.end(), e.batch.state().storage().begin());
+    }
+    for (PointEntry& q : points_) {
+      TetheredPoints& P = q.points;
+      q.X0 = P.X;
+      ib_.interpolate(q.X0, state_.u, q.U, options_.interpolation);
+      if (!blas::all_finite(q.U)) throw NumericalError("tethered points '" + P.name + "': non-finite interpolated velocity");
+      blas::axpy(midpoint ? 0.5 * dt : dt, q.U, P.X);
+      // F = -k (X* - X') - eta U^n, per point.
+      q.F = P.X;
+      blas::axpy(-1.0, P.anchors, q.F);
+      blas::xpby(dvec(q.F.size(), 0.0), -P.k, q.F);
+      blas::axpy(-P.eta, q.U, q.F);
     }
     r.seconds_interpolation += seconds_since(t0);
     // (c) F^{n+1} at X* (sample sites), with U^n for dissipation.
@@ -101,6 +126,10 @@ IbStepReport ImmersedBoundary::step() {
       f_[a].assign(static_cast<std::size_t>(ns_.operators().component_box(a).size()), options_.body_force[a]);
     for (Entry& e : batches_) {
       ib_.spread(e.forces.positions.storage(), e.forces.force.storage(), f_batch_, options_.spreading);
+      for (int a = 0; a < 3; ++a) blas::axpy(1.0, f_batch_[a], f_[a]);
+    }
+    for (PointEntry& q : points_) {
+      ib_.spread(q.points.X, q.F, f_batch_, options_.spreading);
       for (int a = 0; a < 3; ++a) blas::axpy(1.0, f_batch_[a], f_[a]);
     }
     r.seconds_spreading = seconds_since(t0);
@@ -143,9 +172,20 @@ IbStepReport ImmersedBoundary::step() {
       blas::axpy(dt, e.U, e.X);
       thrust::copy(e.X.begin(), e.X.end(), e.batch.state().storage().begin());
     }
+    for (PointEntry& q : points_) {
+      TetheredPoints& P = q.points;
+      if (midpoint)
+        ib_.interpolate(P.X, ns_.midpoint_velocity(), q.U, options_.interpolation);
+      else
+        ib_.interpolate(q.X0, state_.u, q.U, options_.interpolation);
+      if (!blas::all_finite(q.U)) throw NumericalError("tethered points '" + P.name + "': non-finite interpolated velocity");
+      P.X = q.X0;
+      blas::axpy(dt, q.U, P.X);
+    }
     r.seconds_interpolation += seconds_since(t0);
   } catch (const std::exception& ex) {
     for (std::size_t b = 0; b < batches_.size(); ++b) batches_[b].batch.state().storage() = saved[b];
+    for (std::size_t q = 0; q < points_.size(); ++q) points_[q].points.X = saved_points[q];
     if (fluid_stepped) state_ = backup_;
     throw NumericalError("immersed-boundary step " + to_text(steps_) + " at t = " + to_text(t) + " s: " + ex.what() +
                          " (the state before this step is kept)");

@@ -1,5 +1,6 @@
 #pragma once
-// The coupled immersed-boundary time step of Sec. 2.4 over any number of cell batches.
+// The coupled immersed-boundary time step of Sec. 2.4 over any number of cell batches and of
+// tethered point sets (the endothelium of Sec. 5.2, eq. 2.10).
 //
 // Lagrangian side: each batch's data-site positions X and velocities U (cells/batch.hpp); forces
 // are computed at the sample sites reconstructed from X and spread from there (eq. 2.24);
@@ -50,6 +51,19 @@ struct IbOptions {
   std::array<double, 3> body_force{0, 0, 0};
 };
 
+/// Bare Lagrangian points held by damped springs to anchors (dissertation eq. 2.10, the
+/// endothelium of Sec. 5.2): the force on point k is F_k = -k_s (X_k - X'_k) - eta (U_k - U'_k),
+/// U' = 0, in dyn per point (k_s in dyn/cm, eta in dyn s/cm: the seed's k = 2.5 dyn/cm and
+/// eta = 2.5e-7 dyn s/cm are per point, as its units say). Forces are spread from the points and
+/// velocities interpolated at them; no surface is reconstructed.
+struct TetheredPoints {
+  std::string name;
+  dvec X;        ///< positions, 3n, X[d n + k] (cm)
+  dvec anchors;  ///< X', 3n (cm)
+  double k = 0;    ///< spring constant (dyn/cm)
+  double eta = 0;  ///< damping (dyn s/cm)
+};
+
 /// What one step did (seconds per component and the eq. 5.4 numbers).
 struct IbStepReport {
   double max_force_density = 0;  ///< ||f||_inf on the grid (dyn/cm^3)
@@ -68,6 +82,10 @@ class ImmersedBoundary {
 
   /// Adds a batch of cells; returns its index. The batch's velocities are set at the next step.
   index_t add(cells::Batch batch);
+  /// Adds a set of tethered points; returns its index. Throws InputError naming the field for
+  /// mismatched sizes, non-finite values or negative constants.
+  index_t add(TetheredPoints points);
+  const TetheredPoints& points(index_t p) const { return points_.at(p).points; }
   cells::Batch& batch(index_t b) { return batches_.at(b).batch; }
   const cells::Batch& batch(index_t b) const { return batches_.at(b).batch; }
   index_t batches() const { return index_t(batches_.size()); }
@@ -91,6 +109,10 @@ class ImmersedBoundary {
     cells::CellForces forces;
     dvec X0, X, U;  // X^n (kept), positions for ib, interpolated velocities
   };
+  struct PointEntry {
+    TetheredPoints points;
+    dvec X0, U, F;
+  };
   void positions_of(Entry& e, dvec& X) const;
   void interpolate_at(const dvec& X, Entry& e);
 
@@ -99,6 +121,7 @@ class ImmersedBoundary {
   IbOptions options_;
   FluidState state_, backup_;
   std::vector<Entry> batches_;
+  std::vector<PointEntry> points_;
   VectorField f_, f_batch_;
   long steps_ = 0;
 };
