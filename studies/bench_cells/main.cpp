@@ -37,12 +37,6 @@ using st::Json;
 
 namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
 /// Flop rate (flop/s) of a square n x n x n DGEMM through the dense seam, median of repeats.
 double dgemm_rate(index_t n, int repeats) {
   std::vector<double> h(static_cast<std::size_t>(n * n));
@@ -133,8 +127,8 @@ ForceTimings time_calls(const Batch& b, int repeats, double& total) {
     for (int q = 0; q < 5; ++q) ph[q].push_back(v[q]);
     tot.push_back(t.total());
   }
-  total = median(tot);
-  return {median(ph[0]), median(ph[1]), median(ph[2]), median(ph[3]), median(ph[4])};
+  total = st::median(tot);
+  return {st::median(ph[0]), st::median(ph[1]), st::median(ph[2]), st::median(ph[3]), st::median(ph[4])};
 }
 
 /// max |batched - per-cell| / max |per-cell| over the force densities of cell c, against the

@@ -38,12 +38,6 @@ Json row(std::initializer_list<Json> values) { return Json(Json::Array(values));
 
 using rbfib::study::table;
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 struct GridSpec {
   std::string name;
   MacGrid grid;

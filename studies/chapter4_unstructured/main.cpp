@@ -50,13 +50,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  const size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
 host_vector<double> random_points(index_t n, double L, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> U(0.0, L);
@@ -131,7 +124,7 @@ Timing run_steps(Interaction& ib, const Flow& flow, const host_vector<double>& X
     ti.push_back(seconds_since(t0));
     thrust::transform(X.begin(), X.end(), U.begin(), X.begin(), [dt] RBFIB_HD(double x, double v) { return x + dt * v; });  // (5)
   }
-  return {median(ti), median(ts)};
+  return {st::median(ti), st::median(ts)};
 }
 
 double max_abs(const host_vector<double>& v) {

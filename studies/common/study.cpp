@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -94,6 +95,13 @@ void write_results(const Options& opt, const Json& results) {
 
 void log(const Options& opt, const std::string& message) { std::cout << "[" << opt.name << "] " << message << std::endl; }
 
+double median(std::vector<double> values) {
+  if (values.empty()) return NAN;
+  std::sort(values.begin(), values.end());
+  const std::size_t m = values.size() / 2;
+  return values.size() % 2 ? values[m] : 0.5 * (values[m - 1] + values[m]);
+}
+
 double median_seconds(int repeats, const std::function<void()>& fn) {
   std::vector<double> t;
   for (int r = 0; r < std::max(1, repeats); ++r) {
@@ -101,8 +109,7 @@ double median_seconds(int repeats, const std::function<void()>& fn) {
     fn();
     t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
-  std::sort(t.begin(), t.end());
-  return t.size() % 2 ? t[t.size() / 2] : 0.5 * (t[t.size() / 2 - 1] + t[t.size() / 2]);
+  return median(t);
 }
 
 double best_seconds(int repeats, const std::function<void()>& fn) {

@@ -36,6 +36,9 @@ void write_results(const Options& opt, const Json& results);
 /// Prints "[name] message" to stdout, flushed (progress on long runs).
 void log(const Options& opt, const std::string& message);
 
+/// Median of a sample (the mean of the two middle values for an even count; NaN when empty).
+double median(std::vector<double> values);
+
 /// Median wall time in seconds of `repeats` calls of fn.
 double median_seconds(int repeats, const std::function<void()>& fn);
 

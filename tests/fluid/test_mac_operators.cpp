@@ -148,7 +148,7 @@ TEST(MacOperators, ProjectionLeavesDiscretelyDivergenceFreeField) {
     ops.divergence(u, &gamma, div);
     const double before = blas::norm_inf(div);
     PoissonSolver poisson(ops.scalar_box(), PoissonOptions{});
-    blas::xpby(dvec(div.size(), 0.0), -1.0, div);  // -L q = -D u
+    blas::scale(-1.0, div);  // -L q = -D u
     poisson.solve(div, q);
     ops.gradient(q, gq);
     for (int a = 0; a < 3; ++a) blas::axpy(-1.0, gq[a], u[a]);

@@ -64,6 +64,7 @@ Batch::Batch(std::shared_ptr<const CellType> type, const std::vector<Placement>&
   require(cells_ > 0, "batch of '" + type_->name() + "': number of cells", cells_, "must be > 0");
   state_ = linalg::DeviceMatrix(type_->n_data(), 6 * cells_);
   body_.assign(static_cast<std::size_t>(3 * cells_), 0.0);
+  body_device_.assign(body_.size(), 0.0);
   for (index_t c = 0; c < cells_; ++c) place(c, placements[c]);
 }
 
@@ -107,6 +108,7 @@ void Batch::set_body_force(index_t c, const std::array<double, 3>& F) {
             "must be finite");
     body_[d * cells_ + c] = F[d];
   }
+  body_device_.assign(body_.begin(), body_.end());
 }
 
 std::vector<double> Batch::positions_host() const {
@@ -177,7 +179,6 @@ void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings) 
   out.force.resize(ns, 3 * N);
   w.status.resize(static_cast<std::size_t>(total));
   w.site_sums.resize(static_cast<std::size_t>(sums_per_site * total));
-  w.body.assign(batch.body_force().begin(), batch.body_force().end());
   EnergyList energies;
   for (const auto& e : model.elastic) energies.e[energies.n++] = e;
   const JetView zj = type.reference_jets();
@@ -185,7 +186,7 @@ void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings) 
   const bool material_H0 = model.H0_reference && bending;
   const double kappa = model.kappa, H0 = model.H0, nu = model.nu, A0 = type.reference_area();
   const double* dA0 = ptr(type.dA0());
-  const double* body = ptr(w.body);
+  const double* body = ptr(batch.body_force_device());
   double* Fd = ptr(out.density.storage());
   double* Fh = ptr(out.force.storage());
   double* sums = ptr(w.site_sums);

@@ -86,6 +86,8 @@ class Batch {
   /// (the fictitious force of Sec. 5.1.3).
   void set_body_force(index_t c, const std::array<double, 3>& F);
   const std::vector<double>& body_force() const { return body_; }  ///< 3N, F[d N + c]
+  /// The same on the device (uploaded by set_body_force, read by the force call).
+  const dvec& body_force_device() const { return body_device_; }
 
   /// Host copy of the positions (n_d x 3N, column-major).
   std::vector<double> positions_host() const;
@@ -95,7 +97,6 @@ class Batch {
     linalg::DeviceMatrix values, derivatives, dH, dH_derivatives;
     surface::OperatorWorkspace ops;
     device_vector<int> status, data_status;
-    dvec body;
     dvec site_sums;       // per site: 7 contributions (energy, dissipation, area, volume, 3 moments)
     dvec cell_sums;       // per cell
     dvec ones;            // n_s ones: the per-cell sums are S^T 1
@@ -107,6 +108,7 @@ class Batch {
   index_t cells_ = 0;
   linalg::DeviceMatrix state_;
   std::vector<double> body_;
+  dvec body_device_;
   mutable Workspace work_;
 };
 

@@ -1,6 +1,7 @@
 #include "rbfib/cells/cell_type.hpp"
 
 #include "rbfib/core/error.hpp"
+#include "rbfib/surface/geometry.hpp"
 #include "rbfib/surface/quadrature.hpp"
 
 #include <thrust/copy.h>
@@ -33,16 +34,6 @@ void one_cell_jets(const surface::SurfaceOperators& ops, const linalg::DeviceMat
   D.resize(surface::derivative_count * rows, X.cols());
   surface::OperatorWorkspace work;
   surface::apply_operators_rows(ops, X.view(), row0, rows, V.view(), D.view(), work);
-}
-
-/// Host jets of a one-cell JetView whose memory was downloaded.
-std::vector<surface::Jet> host_jets(const linalg::DeviceMatrix& V, const linalg::DeviceMatrix& D) {
-  const std::vector<double> v = V.to_host(), d = D.to_host();
-  const index_t n = V.rows();
-  const surface::JetView view{v.data(), n, d.data(), surface::derivative_count * n, n, 1};
-  std::vector<surface::Jet> jets(static_cast<std::size_t>(n));
-  for (index_t i = 0; i < n; ++i) jets[i] = view.jet(0, i);
-  return jets;
 }
 }  // namespace
 
@@ -90,19 +81,19 @@ CellType::CellType(CellTypeSpec spec) : spec_(std::move(spec)) {
   if (w.empty()) w = surface::rbf_sphere_weights(spec_.sample_sites, 1).w;
   require(static_cast<index_t>(w.size()) == ns, "cell type '" + nm + "' sphere weights", w.size(),
           "must number the sample sites (" + to_text(ns) + ")");
-  std::vector<double> det0(static_cast<std::size_t>(ns));
+  std::vector<double> det0(static_cast<std::size_t>(ns)), x_dot_n(static_cast<std::size_t>(ns));
   for (index_t i = 0; i < ns; ++i) {
     const surface::PointGeometry g = surface::point_geometry(Z[i]);
     if (!(g.det_g > 0))
       throw NumericalError("cell type '" + nm + "': reference surface degenerate at sample site " + to_text(i) +
                            " (det G0 = " + to_text(g.det_g) + ")");
     det0[i] = g.det_g;
+    x_dot_n[i] = surface::dot3(Z[i].x, g.n);
   }
   const std::vector<double> dA0 = surface::reference_shape_weights(spec_.sample_sites, w, det0);
   for (index_t i = 0; i < ns; ++i) {
-    const surface::PointGeometry g = surface::point_geometry(Z[i]);
     area0_ += dA0[i];
-    volume0_ += surface::dot3(Z[i].x, g.n) * dA0[i] / 3;
+    volume0_ += x_dot_n[i] * dA0[i] / 3;
   }
   dA0_.assign(dA0.begin(), dA0.end());
 
@@ -110,7 +101,7 @@ CellType::CellType(CellTypeSpec spec) : spec_(std::move(spec)) {
   if (m.bending() && m.H0_reference) {
     linalg::DeviceMatrix V, D;
     one_cell_jets(*operators_, reference_data_, ns, nd, V, D);
-    const std::vector<surface::Jet> Zd = host_jets(V, D);
+    const std::vector<surface::Jet> Zd = surface::jets_on_host(V, D);
     std::vector<double> H(static_cast<std::size_t>(nd));
     for (index_t i = 0; i < nd; ++i) H[i] = surface::point_geometry(Zd[i]).H;
     H0_data_.assign(H.begin(), H.end());
@@ -136,7 +127,7 @@ surface::JetView CellType::reference_jets() const {
   return {ptr(Z_value_.storage()), ns, ptr(Z_derivatives_.storage()), surface::derivative_count * ns, ns, 1};
 }
 
-std::vector<surface::Jet> CellType::reference_jets_host() const { return host_jets(Z_value_, Z_derivatives_); }
+std::vector<surface::Jet> CellType::reference_jets_host() const { return surface::jets_on_host(Z_value_, Z_derivatives_); }
 
 std::vector<double> CellType::dA0_host() const {
   std::vector<double> h(dA0_.size());

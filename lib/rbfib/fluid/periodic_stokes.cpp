@@ -33,8 +33,7 @@ std::array<double, 3> PeriodicStokesSolver::solve(const VectorField& f, VectorFi
             f[a].size(), "must be " + to_text(ops_.component_box(a).size()));
   // L_c p = D f  <=>  -L_c p = -D f (the pressure solver's form; D f has zero mean on a periodic grid).
   ops_.divergence(f, nullptr, div_);
-  double* pd = ptr(div_);
-  for_each_index(index_t(div_.size()), [=] RBFIB_HD (index_t i) { pd[i] = -pd[i]; });
+  blas::scale(-1.0, div_);
   pressure_->solve(div_, p);
   // (alpha - mu L) u = f - G p, per component.
   ops_.gradient(p, rhs_);
@@ -43,11 +42,7 @@ std::array<double, 3> PeriodicStokesSolver::solve(const VectorField& f, VectorFi
     blas::xpby(f[a], -1.0, rhs_[a]);  // rhs = f - G p
     if (alpha_ == 0) removed[a] = thrust::reduce(f[a].begin(), f[a].end(), 0.0) / double(f[a].size());
     velocity_[a]->solve(rhs_[a], u[a]);  // alpha = 0: mean removed, u mean-free
-    if (alpha_ == 0 && mean_velocity[a] != 0) {
-      double* pu = ptr(u[a]);
-      const double m = mean_velocity[a];
-      for_each_index(index_t(u[a].size()), [=] RBFIB_HD (index_t i) { pu[i] += m; });
-    }
+    if (alpha_ == 0 && mean_velocity[a] != 0) blas::shift(mean_velocity[a], u[a]);
   }
   return removed;
 }
@@ -59,7 +54,7 @@ void PeriodicStokesSolver::solve_iteratively(const VectorField& f, VectorField& 
   PoissonSolver P(ops_.scalar_box(), po);
   dvec b;
   ops_.divergence(f, nullptr, b);
-  blas::xpby(dvec(b.size(), 0.0), -1.0, b);  // -D f
+  blas::scale(-1.0, b);  // -D f
   p.assign(b.size(), 0.0);
   P.solve(b, p);
   VectorField Gp;
@@ -70,7 +65,7 @@ void PeriodicStokesSolver::solve_iteratively(const VectorField& f, VectorField& 
     HelmholtzSolver H(ops_.component_box(a), mu_ / alpha_, ho);
     dvec rhs = f[a];
     blas::axpy(-1.0, Gp[a], rhs);
-    blas::xpby(dvec(rhs.size(), 0.0), 1.0 / alpha_, rhs);  // (f - G p) / alpha
+    blas::scale(1.0 / alpha_, rhs);  // (f - G p) / alpha
     u[a].assign(rhs.size(), 0.0);
     H.solve(rhs, u[a]);
   }

@@ -38,6 +38,18 @@ inline void xpby(const dvec& x, double b, dvec& y) {
   for_each_index(index_t(x.size()), [=] RBFIB_HD (index_t i) { py[i] = px[i] + b * py[i]; });
 }
 
+/// x = a x
+inline void scale(double a, dvec& x) {
+  double* px = ptr(x);
+  for_each_index(index_t(x.size()), [=] RBFIB_HD (index_t i) { px[i] *= a; });
+}
+
+/// x = x + c (every entry)
+inline void shift(double c, dvec& x) {
+  double* px = ptr(x);
+  for_each_index(index_t(x.size()), [=] RBFIB_HD (index_t i) { px[i] += c; });
+}
+
 /// z = x * y (entrywise)
 inline void multiply(const dvec& x, const dvec& y, dvec& z) {
   z.resize(x.size());

@@ -46,7 +46,7 @@ ImmersedBoundary::ImmersedBoundary(const MacGrid& grid, FluidParameters fluid, N
 }
 
 index_t ImmersedBoundary::add(cells::Batch batch) {
-  batches_.push_back(Entry{std::move(batch), {}, {}, {}, {}});
+  batches_.push_back(Entry{std::move(batch), {}, {}, {}, {}, {}});
   return index_t(batches_.size()) - 1;
 }
 
@@ -74,44 +74,45 @@ void ImmersedBoundary::positions_of(Entry& e, dvec& X) const {
   }
 }
 
-void ImmersedBoundary::interpolate_at(const dvec& X, Entry& e) {
-  ib_.interpolate(X, state_.u, e.U, options_.interpolation);
-  const index_t n = 3 * e.batch.size() * e.batch.type().n_data();
-  if (!blas::all_finite(e.U))
-    throw NumericalError("cell type '" + e.batch.type().name() + "': non-finite interpolated velocity");
-  thrust::copy(e.U.begin(), e.U.end(), e.batch.state().storage().begin() + n);  // the velocity block
+void ImmersedBoundary::interpolate(const dvec& X, const VectorField& u, dvec& U, const std::string& who) {
+  ib_.interpolate(X, u, U, options_.interpolation);
+  if (!blas::all_finite(U)) throw NumericalError(who + ": non-finite interpolated velocity");
+}
+
+void ImmersedBoundary::store(Entry& e) {
+  auto state = e.batch.state().storage().begin();
+  thrust::copy(e.X.begin(), e.X.end(), state);
+  thrust::copy(e.U.begin(), e.U.end(), state + index_t(e.X.size()));  // the velocity block
 }
 
 IbStepReport ImmersedBoundary::step() {
   IbStepReport r;
   const double dt = ns_.options().dt;
   const double t = state_.t;
+  const bool midpoint = options_.coupling == Coupling::midpoint;
   // Keep X^n and U at the start: the whole Lagrangian state is restored on failure.
-  std::vector<dvec> saved(batches_.size()), saved_points(points_.size());
-  for (std::size_t b = 0; b < batches_.size(); ++b) saved[b] = batches_[b].batch.state().storage();
-  for (std::size_t q = 0; q < points_.size(); ++q) saved_points[q] = points_[q].points.X;
+  for (Entry& e : batches_) e.saved = e.batch.state().storage();
+  for (PointEntry& q : points_) q.X0 = q.points.X;
   bool fluid_stepped = false;
   try {
     auto t0 = clock_type::now();
     // (a) U^n = I u^n at X^n; (b) X* = X^n + dt U^n (midpoint: X^{n+1/2} = X^n + dt/2 U^n).
-    const bool midpoint = options_.coupling == Coupling::midpoint;
+    const double predict = midpoint ? 0.5 * dt : dt;
     for (Entry& e : batches_) {
       positions_of(e, e.X0);
-      interpolate_at(e.X0, e);
+      interpolate(e.X0, state_.u, e.U, "cell type '" + e.batch.type().name() + "'");
       e.X = e.X0;
-      blas::axpy(midpoint ? 0.5 * dt : dt, e.U, e.X);
-      thrust::copy(e.X.begin(), e.X.end(), e.batch.state().storage().begin());
+      blas::axpy(predict, e.U, e.X);
+      store(e);
     }
     for (PointEntry& q : points_) {
       TetheredPoints& P = q.points;
-      q.X0 = P.X;
-      ib_.interpolate(q.X0, state_.u, q.U, options_.interpolation);
-      if (!blas::all_finite(q.U)) throw NumericalError("tethered points '" + P.name + "': non-finite interpolated velocity");
-      blas::axpy(midpoint ? 0.5 * dt : dt, q.U, P.X);
+      interpolate(q.X0, state_.u, q.U, "tethered points '" + P.name + "'");
+      blas::axpy(predict, q.U, P.X);
       // F = -k (X* - X') - eta U^n, per point.
       q.F = P.X;
       blas::axpy(-1.0, P.anchors, q.F);
-      blas::xpby(dvec(q.F.size(), 0.0), -P.k, q.F);
+      blas::scale(-P.k, q.F);
       blas::axpy(-P.eta, q.U, q.F);
     }
     r.seconds_interpolation += seconds_since(t0);
@@ -121,17 +122,15 @@ IbStepReport ImmersedBoundary::step() {
       r.elastic_energy += e.forces.energy;
     }
     r.seconds_forces = seconds_since(t0);
-    // (d) f^{n+1} = S F^{n+1} from the sample sites of X*, summed over batches.
+    // (d) f^{n+1} = S F^{n+1} from the sample sites of X* (and the points), summed, plus the body force.
     for (int a = 0; a < 3; ++a)
       f_[a].assign(static_cast<std::size_t>(ns_.operators().component_box(a).size()), options_.body_force[a]);
-    for (Entry& e : batches_) {
-      ib_.spread(e.forces.positions.storage(), e.forces.force.storage(), f_batch_, options_.spreading);
+    auto spread_add = [&](const dvec& X, const dvec& F) {
+      ib_.spread(X, F, f_batch_, options_.spreading);
       for (int a = 0; a < 3; ++a) blas::axpy(1.0, f_batch_[a], f_[a]);
-    }
-    for (PointEntry& q : points_) {
-      ib_.spread(q.points.X, q.F, f_batch_, options_.spreading);
-      for (int a = 0; a < 3; ++a) blas::axpy(1.0, f_batch_[a], f_[a]);
-    }
+    };
+    for (Entry& e : batches_) spread_add(e.forces.positions.storage(), e.forces.force.storage());
+    for (PointEntry& q : points_) spread_add(q.points.X, q.F);
     r.seconds_spreading = seconds_since(t0);
     // Eq. 5.4: dt <= (1/4) sqrt(h rho / ||f||_inf).
     for (int a = 0; a < 3; ++a) r.max_force_density = std::max(r.max_force_density, blas::norm_inf(f_[a]));
@@ -151,41 +150,30 @@ IbStepReport ImmersedBoundary::step() {
     for (int a = 0; a < 3; ++a)
       if (!blas::all_finite(state_.u[a])) throw NumericalError("non-finite fluid velocity (component " + to_text(a) + ")");
     r.seconds_fluid = seconds_since(t0);
-    const MacGrid& grid = ns_.grid();
-    const double cell_volume = grid.h(0) * grid.h(1) * grid.h(2);
+    const double cell_volume = g.h(0) * g.h(1) * g.h(2);
     for (int a = 0; a < 3; ++a) {
       r.max_velocity = std::max(r.max_velocity, blas::norm_inf(state_.u[a]));
       r.kinetic_energy += 0.5 * ns_.fluid().density * blas::dot(state_.u[a], state_.u[a]) * cell_volume;
     }
     // (f) U^{n+1} = I u^{n+1} at X^n (midpoint: U^{n+1/2} = I u^{n+1/2} at X^{n+1/2});
     // (g) X^{n+1} = X^n + dt U.
+    const VectorField& u_final = midpoint ? ns_.midpoint_velocity() : state_.u;
     for (Entry& e : batches_) {
-      if (midpoint) {
-        ib_.interpolate(e.X, ns_.midpoint_velocity(), e.U, options_.interpolation);
-        if (!blas::all_finite(e.U))
-          throw NumericalError("cell type '" + e.batch.type().name() + "': non-finite interpolated velocity");
-        thrust::copy(e.U.begin(), e.U.end(), e.batch.state().storage().begin() + index_t(e.X.size()));
-      } else {
-        interpolate_at(e.X0, e);
-      }
+      interpolate(midpoint ? e.X : e.X0, u_final, e.U, "cell type '" + e.batch.type().name() + "'");
       e.X = e.X0;
       blas::axpy(dt, e.U, e.X);
-      thrust::copy(e.X.begin(), e.X.end(), e.batch.state().storage().begin());
+      store(e);
     }
     for (PointEntry& q : points_) {
       TetheredPoints& P = q.points;
-      if (midpoint)
-        ib_.interpolate(P.X, ns_.midpoint_velocity(), q.U, options_.interpolation);
-      else
-        ib_.interpolate(q.X0, state_.u, q.U, options_.interpolation);
-      if (!blas::all_finite(q.U)) throw NumericalError("tethered points '" + P.name + "': non-finite interpolated velocity");
+      interpolate(midpoint ? P.X : q.X0, u_final, q.U, "tethered points '" + P.name + "'");
       P.X = q.X0;
       blas::axpy(dt, q.U, P.X);
     }
     r.seconds_interpolation += seconds_since(t0);
   } catch (const std::exception& ex) {
-    for (std::size_t b = 0; b < batches_.size(); ++b) batches_[b].batch.state().storage() = saved[b];
-    for (std::size_t q = 0; q < points_.size(); ++q) points_[q].points.X = saved_points[q];
+    for (Entry& e : batches_) e.batch.state().storage() = e.saved;
+    for (PointEntry& q : points_) q.points.X = q.X0;
     if (fluid_stepped) state_ = backup_;
     throw NumericalError("immersed-boundary step " + to_text(steps_) + " at t = " + to_text(t) + " s: " + ex.what() +
                          " (the state before this step is kept)");

@@ -107,14 +107,18 @@ class ImmersedBoundary {
   struct Entry {
     cells::Batch batch;
     cells::CellForces forces;
-    dvec X0, X, U;  // X^n (kept), positions for ib, interpolated velocities
+    dvec saved;     // the whole state (X and U) at the start of a step, restored on failure
+    dvec X0, X, U;  // X^n, the positions being used, the interpolated velocities
   };
   struct PointEntry {
     TetheredPoints points;
-    dvec X0, U, F;
+    dvec X0, U, F;  // X^n (also what a failure restores), velocities, spring forces
   };
   void positions_of(Entry& e, dvec& X) const;
-  void interpolate_at(const dvec& X, Entry& e);
+  /// U = I u at X; throws NumericalError naming `who` when U is not finite.
+  void interpolate(const dvec& X, const VectorField& u, dvec& U, const std::string& who);
+  /// Writes positions X and velocities U into the batch's state.
+  static void store(Entry& e);
 
   NavierStokesSolver ns_;
   ib::Interaction ib_;

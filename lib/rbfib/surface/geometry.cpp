@@ -5,36 +5,43 @@
 namespace rbfib::surface {
 
 namespace {
-/// Uploads `cols` columns of data-site values, applies the operators and downloads the jets.
-struct HostJets {
-  std::vector<double> v, d;
-  JetView view;
-  HostJets(const SurfaceOperators& ops, const std::vector<double>& data, index_t cols) {
-    require(static_cast<index_t>(data.size()) == cols * ops.n_data(), "data-site values size", data.size(),
-            "must be " + to_text(cols) + " x data sites (" + to_text(ops.n_data()) + ")");
-    const index_t ns = ops.n_sample();
-    const linalg::DeviceMatrix F = linalg::DeviceMatrix::from_host(ops.n_data(), cols, data.data());
-    linalg::DeviceMatrix V(ns, cols), D(derivative_count * ns, cols);
-    OperatorWorkspace work;
-    apply_operators(ops, F.view(), V.view(), D.view(), work);
-    v = V.to_host();
-    d = D.to_host();
-    view = JetView{v.data(), ns, d.data(), derivative_count * ns, ns, 1};
-  }
-};
+/// Uploads `cols` columns of data-site values and applies the operators: the jets on the device.
+void device_jets(const SurfaceOperators& ops, const std::vector<double>& data, index_t cols, linalg::DeviceMatrix& V,
+                 linalg::DeviceMatrix& D) {
+  require(static_cast<index_t>(data.size()) == cols * ops.n_data(), "data-site values size", data.size(),
+          "must be " + to_text(cols) + " x data sites (" + to_text(ops.n_data()) + ")");
+  const index_t ns = ops.n_sample();
+  const linalg::DeviceMatrix F = linalg::DeviceMatrix::from_host(ops.n_data(), cols, data.data());
+  V.resize(ns, cols);
+  D.resize(derivative_count * ns, cols);
+  OperatorWorkspace work;
+  apply_operators(ops, F.view(), V.view(), D.view(), work);
+}
 }  // namespace
 
-std::vector<Jet> jets_from_operators(const SurfaceOperators& ops, const std::vector<double>& X_data) {
-  const HostJets h(ops, X_data, 3);
-  std::vector<Jet> jets(static_cast<std::size_t>(ops.n_sample()));
-  for (index_t i = 0; i < ops.n_sample(); ++i) jets[i] = h.view.jet(0, i);
+std::vector<Jet> jets_on_host(const linalg::DeviceMatrix& value, const linalg::DeviceMatrix& derivatives) {
+  const std::vector<double> v = value.to_host(), d = derivatives.to_host();
+  const index_t n = value.rows();
+  const JetView view{v.data(), n, d.data(), derivative_count * n, n, 1};
+  std::vector<Jet> jets(static_cast<std::size_t>(n));
+  for (index_t i = 0; i < n; ++i) jets[i] = view.jet(0, i);
   return jets;
 }
 
+std::vector<Jet> jets_from_operators(const SurfaceOperators& ops, const std::vector<double>& X_data) {
+  linalg::DeviceMatrix V, D;
+  device_jets(ops, X_data, 3, V, D);
+  return jets_on_host(V, D);
+}
+
 std::vector<ScalarJet> scalar_jets_from_operators(const SurfaceOperators& ops, const std::vector<double>& u_data) {
-  const HostJets h(ops, u_data, 1);
-  std::vector<ScalarJet> jets(static_cast<std::size_t>(ops.n_sample()));
-  for (index_t i = 0; i < ops.n_sample(); ++i) jets[i] = h.view.scalar(0, i);
+  linalg::DeviceMatrix V, D;
+  device_jets(ops, u_data, 1, V, D);
+  const std::vector<double> v = V.to_host(), d = D.to_host();
+  const index_t ns = ops.n_sample();
+  const JetView view{v.data(), ns, d.data(), derivative_count * ns, ns, 1};
+  std::vector<ScalarJet> jets(static_cast<std::size_t>(ns));
+  for (index_t i = 0; i < ns; ++i) jets[i] = view.scalar(0, i);
   return jets;
 }
 

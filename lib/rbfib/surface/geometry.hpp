@@ -11,6 +11,10 @@
 
 namespace rbfib::surface {
 
+/// Downloads the jets of one cell (the value block n x 3 and derivative block 5n x 3 that
+/// apply_operators writes) into host jets.
+std::vector<Jet> jets_on_host(const linalg::DeviceMatrix& value, const linalg::DeviceMatrix& derivatives);
+
 /// Jets at the sample sites of ops from the points X (n_d x 3, column-major).
 std::vector<Jet> jets_from_operators(const SurfaceOperators& ops, const std::vector<double>& X_data);
 
