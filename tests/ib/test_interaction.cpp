@@ -482,5 +482,64 @@ TEST(IbInteraction, BinnedSlabsForFewPlanes) {
       }
 }
 
+// Points sorted once serve every later call at the same positions: read in place from a block
+// of a larger array (a batch's state: positions, then velocities), their interpolation and
+// spreading equal the calls that sort on their own, bit for bit (the same sort, the same sums),
+// for two different fields through one sort; an empty set gives zero.
+TEST(IbInteraction, PointsSortedOnceServeEveryCallAtThemBitForBit) {
+  const auto boxes = mac_boxes({8, 6, 10}, {0.8, 0.6, 1.0}, {true, false, true});
+  Interaction ib(boxes, "bspline3");
+  const size_t n = 300;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> U01(0.0, 1.0);
+  const double L[3] = {0.8, 0.6, 1.0};
+  HostPoints state(6 * n, 99.0);  // positions, then a block that must not be read as positions
+  for (size_t k = 0; k < n; ++k)
+    for (int a = 0; a < 3; ++a) state[a * n + k] = L[a] * U01(rng);
+  const HostPoints X(state.begin(), state.begin() + 3 * n), F = random_values(3 * n, 11);
+  const dvec dstate(state.begin(), state.end()), dX(X.begin(), X.end()), dF(F.begin(), F.end());
+  SortedPoints sorted;
+  ib.sort(ptr(dstate), index_t(n), sorted);
+  ASSERT_EQ(sorted.size(), index_t(n));
+  for (int field = 0; field < 2; ++field) {
+    std::array<dvec, 3> u;
+    for (int c = 0; c < 3; ++c) {
+      const HostPoints v = random_values(size_t(ib.grid(c).size), 20 + 3 * field + c);
+      u[c] = dvec(v.begin(), v.end());
+    }
+    dvec once(3 * n), alone;
+    ib.interpolate(sorted, u, ptr(once));
+    ib.interpolate(dX, u, alone, Interpolation::binned);
+    const auto a = to_host(once), b = to_host(alone);
+    for (size_t k = 0; k < 3 * n; ++k) ASSERT_EQ(a[k], b[k]) << "field " << field << " entry " << k;
+  }
+  std::array<dvec, 3> f_once, f_alone;
+  ib.spread(sorted, ptr(dF), f_once);
+  ib.spread(dX, dF, f_alone, Spreading::binned);
+  double total = 0;
+  for (int c = 0; c < 3; ++c) {
+    const auto a = to_host(f_once[c]), b = to_host(f_alone[c]);
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t m = 0; m < a.size(); ++m) ASSERT_EQ(a[m], b[m]) << "component " << c << " unknown " << m;
+    for (double v : a) total += std::abs(v);
+  }
+  EXPECT_GT(total, 0.0);
+  SortedPoints none;
+  ib.sort(ptr(dstate), 0, none);
+  ib.spread(none, ptr(dF), f_once);
+  for (int c = 0; c < 3; ++c)
+    for (double v : to_host(f_once[c])) ASSERT_EQ(v, 0.0);
+  // A bad position is named as by the other calls.
+  HostPoints bad(X);
+  bad[n + 5] = 0.7;  // y = 0.7 lies beyond the wall at 0.6
+  const dvec dbad(bad.begin(), bad.end());
+  try {
+    ib.sort(ptr(dbad), index_t(n), sorted);
+    FAIL() << "a point beyond a wall was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("X[5].y"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace rbfib::ib

@@ -5,6 +5,7 @@
 #include "rbfib/ib/kernels.hpp"
 
 #include <thrust/copy.h>
+#include <thrust/device_ptr.h>
 #include <thrust/fill.h>
 #include <thrust/iterator/permutation_iterator.h>
 #include <thrust/iterator/transform_iterator.h>
@@ -100,16 +101,19 @@ double Interaction::cell_volume() const {
 
 void Interaction::check_points(const dvec& X) const {
   require(X.size() % 3 == 0, "X.size", X.size(), "points are stored as 3 n coordinates (x..., y..., z...)");
-  const index_t n = X.size() / 3;
-  require(n < index_t(1) << 31, "X.size", X.size(), "at most 2^31 - 1 points");
+  check_points(ptr(X), index_t(X.size()) / 3);
+}
+
+void Interaction::check_points(const double* X, index_t n) const {
+  require(n < index_t(1) << 31, "number of points", n, "at most 2^31 - 1 points");
   if (n == 0) return;
-  detail::BadCoordinate bad{{grids_[0].axis[0], grids_[0].axis[1], grids_[0].axis[2]}, ptr(X), n};
+  detail::BadCoordinate bad{{grids_[0].axis[0], grids_[0].axis[1], grids_[0].axis[2]}, X, n};
   const index_t first = thrust::transform_reduce(thrust::counting_iterator<index_t>(0),
                                                  thrust::counting_iterator<index_t>(3 * n), bad, 3 * n, detail::MinIndex{});
   if (first == 3 * n) return;
   const int d = int(first / n);
   const index_t k = first % n;
-  const double x = X[first];
+  const double x = thrust::device_pointer_cast(X)[first];
   const GridAxis& a = grids_[0].axis[d];
   static const char* names[3] = {"x", "y", "z"};
   const std::string field = std::string("X[") + std::to_string(k) + "]." + names[d];
@@ -121,11 +125,55 @@ void Interaction::check_points(const dvec& X) const {
                                           to_text(a.origin + a.length) + "] of a wall (non-periodic) axis");
 }
 
-void Interaction::interpolate(const dvec& X, const std::array<dvec, 3>& u, dvec& U, Interpolation alg) {
-  check_points(X);
+void Interaction::check_fields(const std::array<dvec, 3>& u) const {
   for (int c = 0; c < 3; ++c)
     require(index_t(u[c].size()) == grids_[c].size, "u[" + std::to_string(c) + "].size", u[c].size(),
             "must equal the number of unknowns of component " + std::to_string(c) + " (" + std::to_string(grids_[c].size) + ")");
+}
+
+void Interaction::sort(const double* X, index_t n, SortedPoints& s) {
+  check_points(X, n);
+  bin_points(X, n, s);
+}
+
+void Interaction::interpolate(const SortedPoints& s, const std::array<dvec, 3>& u, double* U) {
+  check_fields(u);
+  with_kernel(kernel_, [&](auto k) { interpolate_sorted<decltype(k)>(s, u, U); });
+}
+
+void Interaction::spread(const SortedPoints& s, const double* F, std::array<dvec, 3>& f) {
+  for (int c = 0; c < 3; ++c) f[c].resize(grids_[c].size);
+  with_kernel(kernel_, [&](auto k) { spread_sorted<decltype(k)>(s, F, f); });
+}
+
+template <class K>
+void Interaction::interpolate_sorted(const SortedPoints& s, const std::array<dvec, 3>& u, double* U) {
+  const index_t n = s.n_;
+  for (int c = 0; c < 3; ++c)
+    for_each_index(n, detail::InterpolateSorted<K>{grids_[c], ptr(s.x_), ptr(s.perm_), n, ptr(u[c]), U + c * n});
+}
+
+template <class K>
+void Interaction::spread_sorted(const SortedPoints& s, const double* F, std::array<dvec, 3>& f) {
+  const index_t n = s.n_;
+  const index_t most = std::max({f[0].size(), f[1].size(), f[2].size()});
+  for_each_index(most, detail::ZeroThree{index_t(f[0].size()), index_t(f[1].size()), index_t(f[2].size()), ptr(f[0]), ptr(f[1]), ptr(f[2])});
+  if (n == 0) return;
+  sorted_f_.resize(3 * n);
+  for_each_index(n, detail::GatherSorted{ptr(s.perm_), n, nullptr, F, nullptr, ptr(sorted_f_)});
+  const double scale = 1.0 / cell_volume();
+  for (int colour = 0; colour < 2; ++colour) {
+    const int tasks = (slabs_ - colour + 1) / 2;
+    if (tasks == 0) continue;
+    detail::SpreadSlab<K> p{{{grids_[0], grids_[1], grids_[2]}}, ptr(s.x_), ptr(sorted_f_), ptr(s.slab_start_), n,
+                            scale, colour, ptr(f[0]), ptr(f[1]), ptr(f[2])};
+    for_each_index(tasks, p);
+  }
+}
+
+void Interaction::interpolate(const dvec& X, const std::array<dvec, 3>& u, dvec& U, Interpolation alg) {
+  check_points(X);
+  check_fields(u);
   with_kernel(kernel_, [&](auto k) { interpolate_impl<decltype(k)>(X, u, U, alg); });
 }
 
@@ -142,9 +190,8 @@ void Interaction::interpolate_impl(const dvec& X, const std::array<dvec, 3>& u, 
   U.resize(3 * n);
   if (n == 0) return;
   if (alg == Interpolation::binned) {
-    bin_points(n, X, nullptr);
-    for (int c = 0; c < 3; ++c)
-      for_each_index(n, detail::InterpolateSorted<K>{grids_[c], ptr(sorted_x_), ptr(perm_), n, ptr(u[c]), ptr(U) + c * n});
+    bin_points(ptr(X), n, sorted_);
+    interpolate_sorted<K>(sorted_, u, ptr(U));
     return;
   }
   for (int c = 0; c < 3; ++c) {
@@ -161,17 +208,8 @@ void Interaction::spread_impl(const dvec& X, const dvec& F, std::array<dvec, 3>&
   const index_t n = X.size() / 3;
   const double scale = 1.0 / cell_volume();
   if (alg == Spreading::binned) {
-    const index_t most = std::max({f[0].size(), f[1].size(), f[2].size()});
-    for_each_index(most, detail::ZeroThree{index_t(f[0].size()), index_t(f[1].size()), index_t(f[2].size()), ptr(f[0]), ptr(f[1]), ptr(f[2])});
-    if (n == 0) return;
-    bin_points(n, X, &F);
-    for (int colour = 0; colour < 2; ++colour) {
-      const int tasks = (slabs_ - colour + 1) / 2;
-      if (tasks == 0) continue;
-      detail::SpreadSlab<K> s{{{grids_[0], grids_[1], grids_[2]}}, ptr(sorted_x_), ptr(sorted_f_), ptr(slab_start_), n,
-                              scale, colour, ptr(f[0]), ptr(f[1]), ptr(f[2])};
-      for_each_index(tasks, s);
-    }
+    bin_points(ptr(X), n, sorted_);
+    spread_sorted<K>(sorted_, ptr(F), f);
     return;
   }
   for (int c = 0; c < 3; ++c) {
@@ -266,17 +304,22 @@ void Interaction::spread_buffered(int c, index_t n, const dvec& X, const double*
   for_each_index(g.size, detail::SumBuffer{g.size, ptr(buffer), ptr(out)});
 }
 
-void Interaction::bin_points(index_t n, const dvec& X, const dvec* F) {
+void Interaction::bin_points(const double* X, index_t n, SortedPoints& s) {
+  s.n_ = n;
+  s.slab_start_.resize(slabs_ + 1);
+  if (n == 0) {
+    thrust::fill(s.slab_start_.begin(), s.slab_start_.end(), 0);
+    return;
+  }
   const GridAxis &y = grids_[0].axis[1], &z = grids_[0].axis[2];
   const int rows = y.cells, planes = z.cells;
   const index_t bins = index_t(rows) * planes;
   const int chunks = int(std::clamp<index_t>(n / 4096, 1, 16));
   bins_.resize(n);
-  perm_.resize(n);
+  s.perm_.resize(n);
   counts_.resize(bins * chunks);
-  slab_start_.resize(slabs_ + 1);
   xcell_.resize(n);
-  for_each_index(n, detail::RowBin{grids_[0].axis[0], y, z, ptr(X), n, ptr(bins_), ptr(xcell_)});
+  for_each_index(n, detail::RowBin{grids_[0].axis[0], y, z, X, n, ptr(bins_), ptr(xcell_)});
   thrust::fill(counts_.begin(), counts_.end(), 0);
   for_each_index(chunks, detail::CountChunk{ptr(bins_), n, bins, chunks, ptr(counts_)});
   // Exclusive scan in (bin, chunk) order over the chunk-major counters: a stable counting sort.
@@ -284,13 +327,11 @@ void Interaction::bin_points(index_t n, const dvec& X, const dvec* F) {
       counts_.begin(), thrust::make_transform_iterator(thrust::counting_iterator<index_t>(0), detail::ChunkMajor{bins, chunks}));
   thrust::exclusive_scan(order, order + bins * chunks, order);
   sorted_xcell_.resize(n);
-  for_each_index(chunks, detail::PlaceChunk{ptr(bins_), ptr(xcell_), n, bins, chunks, ptr(counts_), ptr(perm_), ptr(sorted_xcell_)});
-  for_each_index(bins, detail::SortRow{ptr(counts_), bins, chunks, ptr(sorted_xcell_), ptr(perm_), slabs_, planes, rows,
-                                       ptr(slab_start_)});
-  sorted_x_.resize(3 * n);
-  if (F) sorted_f_.resize(3 * n);
-  for_each_index(n, detail::GatherSorted{ptr(perm_), n, ptr(X), F ? ptr(*F) : nullptr, ptr(sorted_x_),
-                                         F ? ptr(sorted_f_) : nullptr});
+  for_each_index(chunks, detail::PlaceChunk{ptr(bins_), ptr(xcell_), n, bins, chunks, ptr(counts_), ptr(s.perm_), ptr(sorted_xcell_)});
+  for_each_index(bins, detail::SortRow{ptr(counts_), bins, chunks, ptr(sorted_xcell_), ptr(s.perm_), slabs_, planes, rows,
+                                       ptr(s.slab_start_)});
+  s.x_.resize(3 * n);
+  for_each_index(n, detail::GatherSorted{ptr(s.perm_), n, X, nullptr, ptr(s.x_), nullptr});
 }
 
 }  // namespace rbfib::ib

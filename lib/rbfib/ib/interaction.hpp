@@ -54,6 +54,23 @@ std::vector<Spreading> all_spreadings();
 /// Number of shifts processed per sweep by Algs. 4.5 and 4.6 (the seed's sz; it used sz = 8).
 inline constexpr int buffer_width = 8;
 
+class Interaction;
+
+/// Points sorted once by grid cell (the order of the binned algorithms) with the sorted copy of
+/// their positions: every interpolation or spreading at the same positions reuses the sort (the
+/// coupled step interpolates twice at X^n). Filled by Interaction::sort; valid for that
+/// Interaction until the positions change.
+class SortedPoints {
+ public:
+  index_t size() const { return n_; }
+
+ private:
+  friend class Interaction;
+  index_t n_ = 0;
+  device_vector<int> perm_, slab_start_;
+  dvec x_;
+};
+
 /// One kernel and one MAC grid. Calls reuse workspace held by the object (sort keys, the Alg. 4.5
 /// buffer), so one object must not be used by two threads at once; the algorithms themselves
 /// run in parallel on the execution device.
@@ -74,9 +91,19 @@ class Interaction {
   /// f = S F for all three components (f is overwritten; each f[c] is resized to its grid).
   void spread(const dvec& X, const dvec& F, std::array<dvec, 3>& f, Spreading alg = Spreading::binned);
 
+  /// Sorts n points by grid cell into s (reusing its storage), after check_points. X points to 3n
+  /// values on the execution device, X[d n + k]: a block of a larger array (a batch's state) is
+  /// read in place.
+  void sort(const double* X, index_t n, SortedPoints& s);
+  /// U = I u at sorted points (binned algorithm); U points to 3 s.size() values, original order.
+  void interpolate(const SortedPoints& s, const std::array<dvec, 3>& u, double* U);
+  /// f = S F from sorted points (binned algorithm); F points to 3 s.size() values, original order.
+  void spread(const SortedPoints& s, const double* F, std::array<dvec, 3>& f);
+
   /// Throws InputError naming the point and axis if some coordinate is not finite, or lies outside
-  /// [origin, origin + L] along a wall axis. Called by interpolate and spread.
+  /// [origin, origin + L] along a wall axis. Called by interpolate, spread and sort.
   void check_points(const dvec& X) const;
+  void check_points(const double* X, index_t n) const;
 
  private:
   template <class K>
@@ -88,7 +115,12 @@ class Interaction {
   template <class K>
   void spread_buffered(int c, index_t n, const dvec& X, const double* L, dvec& out, dvec& buffer);
   void sort_keys(int c, int support, index_t n, const dvec& X);
-  void bin_points(index_t n, const dvec& X, const dvec* F);
+  void bin_points(const double* X, index_t n, SortedPoints& s);
+  void check_fields(const std::array<dvec, 3>& u) const;
+  template <class K>
+  void interpolate_sorted(const SortedPoints& s, const std::array<dvec, 3>& u, double* U);
+  template <class K>
+  void spread_sorted(const SortedPoints& s, const double* F, std::array<dvec, 3>& f);
 
   std::string kernel_;
   int support_ = 0;
@@ -96,9 +128,10 @@ class Interaction {
   dvec buffer_;  // Alg. 4.5: buffer_width vectors of the largest component, zero between calls
   // workspace, reused between calls
   device_vector<key_t> keys_, keys_reduced_;
-  device_vector<int> perm_, bins_, xcell_, sorted_xcell_, counts_, slab_start_, segments_;
+  device_vector<int> perm_, bins_, xcell_, sorted_xcell_, counts_, segments_;
   index_t segment_count_ = 0;
-  dvec values_, values_reduced_, sorted_x_, sorted_f_;
+  dvec values_, values_reduced_, sorted_f_;
+  SortedPoints sorted_;  // the sort of the dvec calls
   int slabs_ = 1;
 };
 

@@ -367,13 +367,14 @@ struct ZeroThree {
 struct GatherSorted {
   const int* perm;
   index_t n;
-  const double* X;
-  const double* F;  // may be null
+  const double* X;  // may be null (F alone)
+  const double* F;  // may be null (X alone)
   double* Xs;
   double* Fs;
   RBFIB_HD void operator()(index_t p) const {
     const index_t k = perm[p];
-    for (int d = 0; d < 3; ++d) Xs[d * n + p] = X[d * n + k];
+    if (X)
+      for (int d = 0; d < 3; ++d) Xs[d * n + p] = X[d * n + k];
     if (F)
       for (int d = 0; d < 3; ++d) Fs[d * n + p] = F[d * n + k];
   }

@@ -4,6 +4,7 @@
 #include "rbfib/linalg/blas.hpp"
 
 #include <thrust/copy.h>
+#include <thrust/device_ptr.h>
 #include <thrust/find.h>
 
 #include <chrono>
@@ -21,11 +22,13 @@ double seconds_since(clock_type::time_point& t0) {
   t0 = t1;
   return s;
 }
-/// Index of the first entry that is NaN or Inf, or -1.
-index_t first_non_finite(const dvec& x) {
-  const auto bad = thrust::find_if(x.begin(), x.end(), [] RBFIB_HD (double v) { return !((v - v) == 0.0); });
-  return bad == x.end() ? -1 : index_t(bad - x.begin());
+/// Index of the first of n entries (device memory) that is NaN or Inf, or -1.
+index_t first_non_finite(const double* x, index_t n) {
+  const auto begin = thrust::device_pointer_cast(x);
+  const auto bad = thrust::find_if(begin, begin + n, [] RBFIB_HD (double v) { return !((v - v) == 0.0); });
+  return bad == begin + n ? -1 : index_t(bad - begin);
 }
+index_t first_non_finite(const dvec& x) { return first_non_finite(ptr(x), index_t(x.size())); }
 
 std::array<Box, 3> component_boxes(const MacOperators& ops) {
   return {ops.component_box(0), ops.component_box(1), ops.component_box(2)};
@@ -58,31 +61,34 @@ index_t ImmersedBoundary::add(TetheredPoints p) {
   require(std::isfinite(p.eta) && p.eta >= 0, field + ": damping eta (dyn s/cm)", p.eta, "must be finite and >= 0");
   require(first_non_finite(p.X) < 0 && first_non_finite(p.anchors) < 0, field + ": positions and anchors", "NaN or Inf",
           "must be finite");
-  points_.push_back(PointEntry{std::move(p), {}, {}, {}});
+  points_.push_back(PointEntry{std::move(p), {}, {}, {}, {}});
   return index_t(points_.size()) - 1;
 }
 
-void ImmersedBoundary::positions_of(Entry& e, dvec& X) const {
-  const index_t nd = e.batch.type().n_data(), N = e.batch.size(), n = 3 * N * nd;
-  X.resize(static_cast<std::size_t>(n));
-  thrust::copy(e.batch.state().storage().begin(), e.batch.state().storage().begin() + n, X.begin());
-  const index_t k = first_non_finite(X);
-  if (k >= 0) {
-    const index_t c = (k % (N * nd)) / nd;
-    throw NumericalError("cell type '" + e.batch.type().name() + "', cell " + to_text(c) + ": non-finite position at data site " +
-                         to_text(k % nd) + " (coordinate " + "xyz"[k / (N * nd)] + ")");
-  }
+void ImmersedBoundary::sort_start(Entry& e) {
+  const index_t nd = e.batch.type().n_data(), N = e.batch.size(), n = N * nd;
+  const double* X = ptr(e.batch.state().storage());
+  const index_t k = first_non_finite(X, 3 * n);
+  if (k >= 0)
+    throw NumericalError("cell type '" + e.batch.type().name() + "', cell " + to_text((k % n) / nd) +
+                         ": non-finite position at data site " + to_text(k % nd) + " (coordinate " + "xyz"[k / n] + ")");
+  ib_.sort(X, n, e.start);
 }
 
-void ImmersedBoundary::interpolate(const dvec& X, const VectorField& u, dvec& U, const std::string& who) {
-  ib_.interpolate(X, u, U, options_.interpolation);
+void ImmersedBoundary::interpolate(const ib::SortedPoints& s, const VectorField& u, dvec& U, const std::string& who) {
+  U.resize(static_cast<std::size_t>(3 * s.size()));
+  ib_.interpolate(s, u, ptr(U));
   if (!blas::all_finite(U)) throw NumericalError(who + ": non-finite interpolated velocity");
 }
 
-void ImmersedBoundary::store(Entry& e) {
+void ImmersedBoundary::advance(Entry& e, double c) {
+  const auto n = static_cast<std::ptrdiff_t>(e.U.size());
+  e.X.resize(e.U.size());
+  thrust::copy(e.saved.begin(), e.saved.begin() + n, e.X.begin());  // X^n
+  blas::axpy(c, e.U, e.X);
   auto state = e.batch.state().storage().begin();
   thrust::copy(e.X.begin(), e.X.end(), state);
-  thrust::copy(e.U.begin(), e.U.end(), state + index_t(e.X.size()));  // the velocity block
+  thrust::copy(e.U.begin(), e.U.end(), state + n);  // the velocity block
 }
 
 IbStepReport ImmersedBoundary::step() {
@@ -99,15 +105,14 @@ IbStepReport ImmersedBoundary::step() {
     // (a) U^n = I u^n at X^n; (b) X* = X^n + dt U^n (midpoint: X^{n+1/2} = X^n + dt/2 U^n).
     const double predict = midpoint ? 0.5 * dt : dt;
     for (Entry& e : batches_) {
-      positions_of(e, e.X0);
-      interpolate(e.X0, state_.u, e.U, "cell type '" + e.batch.type().name() + "'");
-      e.X = e.X0;
-      blas::axpy(predict, e.U, e.X);
-      store(e);
+      sort_start(e);
+      interpolate(e.start, state_.u, e.U, "cell type '" + e.batch.type().name() + "'");
+      advance(e, predict);
     }
     for (PointEntry& q : points_) {
       TetheredPoints& P = q.points;
-      interpolate(q.X0, state_.u, q.U, "tethered points '" + P.name + "'");
+      ib_.sort(ptr(q.X0), index_t(q.X0.size()) / 3, q.start);
+      interpolate(q.start, state_.u, q.U, "tethered points '" + P.name + "'");
       blas::axpy(predict, q.U, P.X);
       // F = -k (X* - X') - eta U^n, per point.
       q.F = P.X;
@@ -157,16 +162,17 @@ IbStepReport ImmersedBoundary::step() {
     }
     // (f) U^{n+1} = I u^{n+1} at X^n (midpoint: U^{n+1/2} = I u^{n+1/2} at X^{n+1/2});
     // (g) X^{n+1} = X^n + dt U.
+    // Seed: the sort of X^n from (a) is reused; midpoint: X^{n+1/2} is sorted once more.
     const VectorField& u_final = midpoint ? ns_.midpoint_velocity() : state_.u;
     for (Entry& e : batches_) {
-      interpolate(midpoint ? e.X : e.X0, u_final, e.U, "cell type '" + e.batch.type().name() + "'");
-      e.X = e.X0;
-      blas::axpy(dt, e.U, e.X);
-      store(e);
+      if (midpoint) ib_.sort(ptr(e.X), index_t(e.X.size()) / 3, e.start);
+      interpolate(e.start, u_final, e.U, "cell type '" + e.batch.type().name() + "'");
+      advance(e, dt);
     }
     for (PointEntry& q : points_) {
       TetheredPoints& P = q.points;
-      interpolate(midpoint ? P.X : q.X0, u_final, q.U, "tethered points '" + P.name + "'");
+      if (midpoint) ib_.sort(ptr(P.X), index_t(P.X.size()) / 3, q.start);
+      interpolate(q.start, u_final, q.U, "tethered points '" + P.name + "'");
       P.X = q.X0;
       blas::axpy(dt, q.U, P.X);
     }

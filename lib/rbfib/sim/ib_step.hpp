@@ -107,18 +107,21 @@ class ImmersedBoundary {
   struct Entry {
     cells::Batch batch;
     cells::CellForces forces;
-    dvec saved;     // the whole state (X and U) at the start of a step, restored on failure
-    dvec X0, X, U;  // X^n, the positions being used, the interpolated velocities
+    dvec saved;               // the whole state (X^n and U) at the start of a step, restored on failure
+    ib::SortedPoints start;   // X^n sorted once by grid cell: (a) and (f) interpolate there
+    dvec X, U;                // the positions being used, the interpolated velocities
   };
   struct PointEntry {
     TetheredPoints points;
+    ib::SortedPoints start;
     dvec X0, U, F;  // X^n (also what a failure restores), velocities, spring forces
   };
-  void positions_of(Entry& e, dvec& X) const;
-  /// U = I u at X; throws NumericalError naming `who` when U is not finite.
-  void interpolate(const dvec& X, const VectorField& u, dvec& U, const std::string& who);
-  /// Writes positions X and velocities U into the batch's state.
-  static void store(Entry& e);
+  /// Sorts the batch's X^n (read in place from its state) after checking it is finite.
+  void sort_start(Entry& e);
+  /// U = I u at sorted points; throws NumericalError naming `who` when U is not finite.
+  void interpolate(const ib::SortedPoints& s, const VectorField& u, dvec& U, const std::string& who);
+  /// X = X^n + c U, with X^n from the saved state; written into the batch's state with U.
+  static void advance(Entry& e, double c);
 
   NavierStokesSolver ns_;
   ib::Interaction ib_;
