@@ -234,6 +234,79 @@ TEST(IbStep, TheStoppingConditionFiresWithItsNumbersAndKeepsTheState) {
   EXPECT_EQ(ib.time(), 0.0);
 }
 
+/// A sphere stretched by 1.1 in z and compressed by 1.1 in y, relaxing with the adaptive step
+/// dt = 2^k dt_min, k <= max_level, starting at dt.
+ImmersedBoundary adaptive_box(double dt_min, int max_level, double dt) {
+  NavierStokesOptions o;
+  o.dt = dt;
+  IbOptions io;
+  io.adaptive = AdaptiveStep{true, dt_min, max_level, 16};
+  ImmersedBoundary ib(box16(), FluidParameters{1.0, 0.1 * units::cP}, o, {}, io);
+  cells::Placement p = at(8, 8, 8);
+  p.stretch = {1.0, 1 / 1.1, 1.1};
+  ib.add(cells::Batch(sphere(), {p}));
+  return ib;
+}
+
+TEST(IbStep, TheAdaptiveStepShrinksAtOnceAndGrowsOnlyAfterSixteenStepsThatAllowIt) {
+  const double dt_min = 0.05 * units::us;
+  const int max_level = 8;
+  ImmersedBoundary ib = adaptive_box(dt_min, max_level, std::ldexp(dt_min, max_level));
+  std::vector<double> dts, bounds;
+  int refused_first = 0, grew = 0;
+  double t = 0;
+  for (int n = 0; n < 120; ++n) {
+    const IbStepReport r = ib.step();
+    // A refusal later on is expected too: near the explicit coupling's stability limit the force
+    // grows over a few steps at the larger size until eq. 5.4 refuses it and the step shrinks.
+    if (n == 0) refused_first = r.refused;
+    const double k = std::log2(r.dt / dt_min);
+    ASSERT_EQ(k, std::round(k)) << "step " << n << ": dt = " << r.dt << " is not 2^k dt_min";
+    ASSERT_LE(r.dt, r.dt_bound) << "step " << n << ": eq. 5.4 violated";
+    t += r.dt;
+    dts.push_back(r.dt);
+    bounds.push_back(r.dt_bound);
+  }
+  EXPECT_NEAR(ib.time(), t, 1e-12 * t);
+  // The first attempt at 2^8 dt_min is refused and retaken at once at the largest level allowed.
+  EXPECT_GT(refused_first, 0);
+  EXPECT_LT(dts[0], std::ldexp(dt_min, max_level));
+  EXPECT_GT(2 * dts[0], bounds[0]) << "the retaken step is not the largest the bound allows";
+  // The level never grows by more than one, and only after 16 steps at one size that allowed 2 dt.
+  for (size_t n = 1; n < dts.size(); ++n) {
+    if (dts[n] <= dts[n - 1]) continue;
+    ++grew;
+    ASSERT_EQ(dts[n], 2 * dts[n - 1]) << "step " << n;
+    ASSERT_GE(n, 16u) << "step " << n;
+    for (size_t m = n - 16; m < n; ++m) {
+      ASSERT_EQ(dts[m], dts[n - 1]) << "step " << m << " before the growth at step " << n;
+      ASSERT_LE(2 * dts[m], bounds[m]) << "step " << m << " did not allow a doubling";
+    }
+  }
+  EXPECT_GT(grew, 0) << "the relaxing cell's force falls; the step should grow";
+}
+
+TEST(IbStep, TheAdaptiveStepStopsWhenEvenItsSmallestStepViolatesTheBound) {
+  // The sphere stretched by 2 with dt_min = 1 ms: no level can satisfy eq. 5.4.
+  NavierStokesOptions o;
+  o.dt = 2e-3;
+  IbOptions io;
+  io.adaptive = AdaptiveStep{true, 1e-3, 3, 16};
+  ImmersedBoundary ib(box16(), FluidParameters{1.0, 0.1 * units::cP}, o, {}, io);
+  cells::Placement p = at(8, 8, 8);
+  p.stretch = {2.0, 1.0, 0.5};
+  ib.add(cells::Batch(sphere(), {p}));
+  const dvec before = ib.batch(0).state().storage();
+  const std::string m = testing::message_of<NumericalError>([&] { ib.step(); });
+  EXPECT_NE(m.find("eq. 5.4"), std::string::npos) << m;
+  EXPECT_NE(m.find("dt_min = 0.001 s"), std::string::npos) << m;
+  EXPECT_EQ(max_abs_diff(ib.batch(0).state().storage(), before), 0.0);
+  EXPECT_EQ(ib.time(), 0.0);
+  // A first dt that is not 2^k dt_min is bad input naming the field.
+  const std::string bad = testing::message_of<InputError>([&] { adaptive_box(1e-7, 4, 3e-7); });
+  EXPECT_NE(bad.find("fluid.dt"), std::string::npos) << bad;
+}
+
 /// Data-site positions of a stretched sphere after T = 2 us with step dt, coupling c.
 std::vector<double> relaxed(double dt, TimeIntegrator ti, Coupling c) {
   const MacGrid g = box16();

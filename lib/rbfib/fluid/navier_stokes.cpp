@@ -46,25 +46,13 @@ NavierStokesSolver::NavierStokesSolver(const MacGrid& grid, FluidParameters flui
   require(std::isfinite(fluid_.viscosity) && fluid_.viscosity > 0.0, "fluid.viscosity", fluid_.viscosity,
           "must be positive and finite (poise)");
   require(std::isfinite(options_.dt) && options_.dt > 0.0, "fluid.dt", options_.dt, "must be positive and finite (s)");
-  const double nu = fluid_.viscosity / fluid_.density;
-  // Backward Euler: c = dt nu; Peskin: both stages have c = (dt/2) nu.
-  const double c = (options_.integrator == TimeIntegrator::backward_forward_euler ? 1.0 : 0.5) * options_.dt * nu;
   bool fourier_possible = FourierSolver::applies(ops_.scalar_box());
   for (int a = 0; a < grid_.dims; ++a) fourier_possible = fourier_possible && FourierSolver::applies(ops_.component_box(a));
   if (options_.solvers == FluidSolvers::fourier)
     require(fourier_possible, "fluid.solvers", to_string(options_.solvers),
             "needs x and z periodic (y periodic or walls); this grid has walls across x or z");
   fourier_ = options_.solvers == FluidSolvers::fourier || (options_.solvers == FluidSolvers::automatic && fourier_possible);
-  for (int a = 0; a < grid_.dims; ++a) {
-    const std::string name = options_.helmholtz.solver.name + " u" + std::to_string(a);
-    if (fourier_) {
-      fourier_helmholtz_[a] = std::make_unique<FourierSolver>(ops_.component_box(a), Correction::appendix_a, 1.0, -c, name);
-    } else {
-      HelmholtzOptions h = options_.helmholtz;
-      h.solver.name = name;
-      helmholtz_[a] = std::make_unique<HelmholtzSolver>(ops_.component_box(a), c, h);
-    }
-  }
+  helmholtz_.push_back(make_helmholtz(options_.dt));
   if (fourier_)
     fourier_poisson_ = std::make_unique<FourierSolver>(ops_.scalar_box(), Correction::none, 0.0, -1.0, options_.poisson.solver.name);
   else
@@ -80,9 +68,40 @@ const char* to_string(FluidSolvers solvers) {
   return "?";
 }
 
+NavierStokesSolver::HelmholtzSet NavierStokesSolver::make_helmholtz(double dt) const {
+  const double nu = fluid_.viscosity / fluid_.density;
+  // Backward Euler: c = dt nu; Peskin: both stages have c = (dt/2) nu.
+  const double c = (options_.integrator == TimeIntegrator::backward_forward_euler ? 1.0 : 0.5) * dt * nu;
+  HelmholtzSet set;
+  set.dt = dt;
+  for (int a = 0; a < grid_.dims; ++a) {
+    const std::string name = options_.helmholtz.solver.name + " u" + std::to_string(a);
+    if (fourier_) {
+      set.fourier[a] = std::make_unique<FourierSolver>(ops_.component_box(a), Correction::appendix_a, 1.0, -c, name);
+    } else {
+      HelmholtzOptions h = options_.helmholtz;
+      h.solver.name = name;
+      set.multigrid[a] = std::make_unique<HelmholtzSolver>(ops_.component_box(a), c, h);
+    }
+  }
+  return set;
+}
+
+void NavierStokesSolver::set_dt(double dt) {
+  require(std::isfinite(dt) && dt > 0.0, "fluid.dt", dt, "must be positive and finite (s)");
+  options_.dt = dt;
+  for (std::size_t k = 0; k < helmholtz_.size(); ++k)
+    if (helmholtz_[k].dt == dt) {
+      current_ = k;
+      return;
+    }
+  helmholtz_.push_back(make_helmholtz(dt));
+  current_ = helmholtz_.size() - 1;
+}
+
 const HelmholtzSolver& NavierStokesSolver::helmholtz(int a) const {
-  require(!fourier_ && helmholtz_[a], "NavierStokesSolver::helmholtz", a, "the iterative solvers exist on the multigrid path only");
-  return *helmholtz_[a];
+  require(!fourier_, "NavierStokesSolver::helmholtz", a, "the iterative solvers exist on the multigrid path only");
+  return *helmholtz_[current_].multigrid[a];
 }
 
 const PoissonSolver& NavierStokesSolver::poisson() const {
@@ -91,7 +110,7 @@ const PoissonSolver& NavierStokesSolver::poisson() const {
 }
 
 const StaggeredLaplacian& NavierStokesSolver::velocity_laplacian(int a) const {
-  return fourier_ ? fourier_helmholtz_[a]->laplacian() : helmholtz_[a]->laplacian();
+  return fourier_ ? helmholtz_[current_].fourier[a]->laplacian() : helmholtz_[current_].multigrid[a]->laplacian();
 }
 
 const StaggeredLaplacian& NavierStokesSolver::pressure_laplacian() const {
@@ -182,11 +201,11 @@ void NavierStokesSolver::stage(FluidState& state, const VectorField& u_src, doub
   t0 = clock_type::now();
   for (int a = 0; a < dims; ++a) {
     if (fourier_) {
-      fourier_helmholtz_[a]->solve(rhs_[a], ustar_[a]);
+      helmholtz_[current_].fourier[a]->solve(rhs_[a], ustar_[a]);
       continue;
     }
     ustar_[a] = u_src[a];  // initial guess
-    stats.helmholtz_iterations[s][a] = helmholtz_[a]->solve(rhs_[a], ustar_[a]).iterations;
+    stats.helmholtz_iterations[s][a] = helmholtz_[current_].multigrid[a]->solve(rhs_[a], ustar_[a]).iterations;
   }
   stats.seconds_helmholtz += seconds_since(t0);
 

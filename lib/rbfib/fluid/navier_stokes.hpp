@@ -100,6 +100,11 @@ class NavierStokesSolver {
   /// u^{n+1/2} of the last step of Peskin's two-stage scheme (its first stage); empty before one.
   const VectorField& midpoint_velocity() const { return u_half_; }
 
+  /// Changes the time step (s) of the following steps: the Helmholtz operators of each step size
+  /// used are built once and kept, so an adaptive run that moves among a few sizes (dt = 2^k
+  /// dt_min) builds each once. Throws InputError naming the field on a non-positive dt.
+  void set_dt(double dt);
+
   /// Time at which step() expects f, for a step from time t.
   double force_time(double t) const;
 
@@ -129,9 +134,16 @@ class NavierStokesSolver {
   BoundaryVelocity boundary_;
   MacOperators ops_;
   bool fourier_ = false;
-  std::array<std::unique_ptr<HelmholtzSolver>, 3> helmholtz_;
+  /// The velocity systems of one step size (multigrid or Fourier, per component).
+  struct HelmholtzSet {
+    double dt = 0;
+    std::array<std::unique_ptr<HelmholtzSolver>, 3> multigrid;
+    std::array<std::unique_ptr<FourierSolver>, 3> fourier;
+  };
+  HelmholtzSet make_helmholtz(double dt) const;
+  std::vector<HelmholtzSet> helmholtz_;  // one per step size used; current_ is in use
+  std::size_t current_ = 0;
   std::unique_ptr<PoissonSolver> poisson_;
-  std::array<std::unique_ptr<FourierSolver>, 3> fourier_helmholtz_;
   std::unique_ptr<FourierSolver> fourier_poisson_;
   const StaggeredLaplacian& velocity_laplacian(int a) const;
   const StaggeredLaplacian& pressure_laplacian() const;

@@ -46,6 +46,49 @@ ImmersedBoundary::ImmersedBoundary(const MacGrid& grid, FluidParameters fluid, N
   require(options_.coupling == Coupling::seed || ns_.options().integrator == TimeIntegrator::peskin_two_stage,
           "ib.coupling", to_string(options_.coupling), "needs Peskin's two-stage fluid scheme (its midpoint velocity)");
   state_ = ns_.zero_state(0.0);
+  const AdaptiveStep& a = options_.adaptive;
+  if (a.enabled) {
+    require(std::isfinite(a.dt_min) && a.dt_min > 0, "ib.adaptive.dt_min", a.dt_min, "must be positive and finite (s)");
+    require(a.max_level >= 0 && a.max_level <= 30, "ib.adaptive.max_level", a.max_level, "must lie in [0, 30]");
+    require(a.grow_after >= 1, "ib.adaptive.grow_after", a.grow_after, "must be at least 1 step");
+    const double k = std::log2(ns_.options().dt / a.dt_min);
+    level_ = int(std::lround(k));
+    require(std::abs(k - level_) < 1e-9 && level_ >= 0 && level_ <= a.max_level, "fluid.dt", ns_.options().dt,
+            "must be 2^k dt_min (dt_min = " + to_text(a.dt_min) + " s) with k in [0, " + to_text(a.max_level) + "]");
+  }
+}
+
+void ImmersedBoundary::set_level(int level) {
+  level_ = level;
+  allowing_ = 0;
+  ns_.set_dt(std::ldexp(options_.adaptive.dt_min, level));
+}
+
+IbStepReport ImmersedBoundary::step() {
+  const AdaptiveStep& a = options_.adaptive;
+  int refused = 0;
+  for (;;) {
+    try {
+      IbStepReport r = attempt();
+      r.refused = refused;
+      if (a.enabled) {
+        // Grow by one level only after grow_after consecutive steps whose bound allowed 2 dt.
+        allowing_ = (level_ < a.max_level && 2 * r.dt <= r.dt_bound) ? allowing_ + 1 : 0;
+        if (allowing_ >= a.grow_after) set_level(level_ + 1);
+      }
+      return r;
+    } catch (const Refused& no) {
+      // Shrink at once to the largest level the bound allows, then take the step again.
+      const int fits = int(std::floor(std::log2(no.bound / a.dt_min)));
+      const int level = std::min(fits, level_ - 1);
+      if (level < 0)
+        throw NumericalError("immersed-boundary step " + to_text(steps_) + " at t = " + to_text(state_.t) +
+                             " s: stopping condition (eq. 5.4) violated even at dt_min = " + to_text(a.dt_min) +
+                             " s: (1/4) sqrt(h rho / ||f||_inf) = " + to_text(no.bound) + " s (the state before this step is kept)");
+      set_level(level);
+      ++refused;
+    }
+  }
 }
 
 index_t ImmersedBoundary::add(cells::Batch batch) {
@@ -91,9 +134,10 @@ void ImmersedBoundary::advance(Entry& e, double c) {
   thrust::copy(e.U.begin(), e.U.end(), state + n);  // the velocity block
 }
 
-IbStepReport ImmersedBoundary::step() {
+IbStepReport ImmersedBoundary::attempt() {
   IbStepReport r;
   const double dt = ns_.options().dt;
+  r.dt = dt;
   const double t = state_.t;
   const bool midpoint = options_.coupling == Coupling::midpoint;
   // Keep X^n and U at the start: the whole Lagrangian state is restored on failure.
@@ -145,6 +189,7 @@ IbStepReport ImmersedBoundary::step() {
                                          : std::numeric_limits<double>::infinity();
     if (!std::isfinite(r.max_force_density))
       throw NumericalError("non-finite spread force density");
+    if (options_.adaptive.enabled && dt > r.dt_bound) throw Refused{r.dt_bound};
     if (options_.stopping_condition && dt > r.dt_bound)
       throw NumericalError("stopping condition (eq. 5.4) violated: ||f||_inf = " + to_text(r.max_force_density) +
                            " dyn/cm^3, dt = " + to_text(dt) + " s > (1/4) sqrt(h rho / ||f||_inf) = " + to_text(r.dt_bound) + " s");
@@ -177,12 +222,18 @@ IbStepReport ImmersedBoundary::step() {
       blas::axpy(dt, q.U, P.X);
     }
     r.seconds_interpolation += seconds_since(t0);
-  } catch (const std::exception& ex) {
+  } catch (...) {
     for (Entry& e : batches_) e.batch.state().storage() = e.saved;
     for (PointEntry& q : points_) q.points.X = q.X0;
     if (fluid_stepped) state_ = backup_;
-    throw NumericalError("immersed-boundary step " + to_text(steps_) + " at t = " + to_text(t) + " s: " + ex.what() +
-                         " (the state before this step is kept)");
+    try {
+      throw;
+    } catch (const Refused&) {
+      throw;
+    } catch (const std::exception& ex) {
+      throw NumericalError("immersed-boundary step " + to_text(steps_) + " at t = " + to_text(t) + " s: " + ex.what() +
+                           " (the state before this step is kept)");
+    }
   }
   ++steps_;
   return r;

@@ -25,7 +25,8 @@
 //   dt > (1/4) sqrt(h rho / ||f||_inf),
 // and any failure (that condition, a degenerate or inverted cell, a non-finite force or velocity)
 // raises NumericalError naming the step, the time and the cause, with every state (fluid, cells)
-// left as it was before the step: the last good state survives.
+// left as it was before the step: the last good state survives. With the adaptive step
+// (AdaptiveStep below) a refusal by eq. 5.4 instead retakes the step at once with a smaller dt.
 // Units (CGS): positions cm, velocities cm/s, forces dyn, force densities dyn/cm^3, time s.
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/fluid/navier_stokes.hpp"
@@ -40,6 +41,18 @@ namespace rbfib::sim {
 enum class Coupling { seed, midpoint };
 const char* to_string(Coupling c);
 
+/// The adaptive step of the seed's own code: dt = 2^k dt_min for a level k in [0, max_level],
+/// chosen from eq. 5.4. A step whose force density makes dt exceed the bound is refused (the
+/// state is restored) and taken again at once at the largest level the bound allows; the level
+/// grows by one only after grow_after consecutive steps whose bound allowed twice their dt. The
+/// first step is taken at the options' dt, which must be such a size.
+struct AdaptiveStep {
+  bool enabled = false;
+  double dt_min = 0;    ///< s
+  int max_level = 0;    ///< dt <= 2^max_level dt_min
+  int grow_after = 16;  ///< steps that allow a doubling before it is taken
+};
+
 struct IbOptions {
   Coupling coupling = Coupling::seed;
   std::string kernel = "bspline3";  ///< a name from ib::kernel_names()
@@ -49,6 +62,7 @@ struct IbOptions {
   /// A uniform body force density added to the spread force every step (dyn/cm^3), e.g. a mean
   /// pressure gradient driving a channel or a periodic box.
   std::array<double, 3> body_force{0, 0, 0};
+  AdaptiveStep adaptive;
 };
 
 /// Bare Lagrangian points held by damped springs to anchors (dissertation eq. 2.10, the
@@ -66,6 +80,8 @@ struct TetheredPoints {
 
 /// What one step did (seconds per component and the eq. 5.4 numbers).
 struct IbStepReport {
+  double dt = 0;                 ///< the step taken (s)
+  int refused = 0;               ///< attempts refused by eq. 5.4 before it (adaptive step)
   double max_force_density = 0;  ///< ||f||_inf on the grid (dyn/cm^3)
   double dt_bound = 0;           ///< (1/4) sqrt(h rho / ||f||_inf) (s); infinite when f = 0
   double max_velocity = 0;       ///< max |u_a| after the step (cm/s)
@@ -97,8 +113,11 @@ class ImmersedBoundary {
   double time() const { return state_.t; }
   long step_count() const { return steps_; }
 
-  /// One step (a)-(g). Throws NumericalError (state unchanged) as described above.
+  /// One step (a)-(g). Throws NumericalError (state unchanged) as described above; with the
+  /// adaptive step, eq. 5.4 stops the run only when even dt_min violates it.
   IbStepReport step();
+  /// The step size of the next step (s).
+  double dt() const { return ns_.options().dt; }
 
   /// The Eulerian force density of the last step (dyn/cm^3), per component.
   const VectorField& force_density() const { return f_; }
@@ -122,6 +141,13 @@ class ImmersedBoundary {
   void interpolate(const ib::SortedPoints& s, const VectorField& u, dvec& U, const std::string& who);
   /// X = X^n + c U, with X^n from the saved state; written into the batch's state with U.
   static void advance(Entry& e, double c);
+  /// One attempt at the step with the current dt; throws Refused (state restored) when the
+  /// adaptive step is on and eq. 5.4 refuses it.
+  IbStepReport attempt();
+  struct Refused {
+    double bound;
+  };
+  void set_level(int level);
 
   NavierStokesSolver ns_;
   ib::Interaction ib_;
@@ -131,6 +157,7 @@ class ImmersedBoundary {
   std::vector<PointEntry> points_;
   VectorField f_, f_batch_;
   long steps_ = 0;
+  int level_ = 0, allowing_ = 0;  // adaptive step: current level, consecutive steps allowing a doubling
 };
 
 }  // namespace rbfib::sim
