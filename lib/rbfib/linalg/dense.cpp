@@ -5,6 +5,7 @@
 #include <thrust/copy.h>
 
 #include <algorithm>
+#include <cmath>
 
 #if defined(RBFIB_BACKEND_CUDA)
 #include <cublas_v2.h>
@@ -186,6 +187,51 @@ void lu_solve(const LuFactors& f, Op op, MatrixView B) {
   dgetrs_(&trans, &n, &nrhs, ptr(f.lu.storage()), &n, ptr(f.ipiv), B.data, &ldb, &info, 1);
 #endif
   if (info != 0) throw NumericalError("LU solve (getrs): info = " + to_text(info));
+}
+
+double lu_rcond(const LuFactors& f, double norm1) {
+  const index_t n = f.n();
+  if (n == 0) return 1.0;
+  if (!(norm1 > 0)) return 0.0;
+  // Hager (1984), Higham (1988): maximize ||A^{-1} x||_1 over ||x||_1 = 1 by a gradient step to a
+  // vertex e_j; then compare with the alternating vector b_i = (-1)^i (1 + i / (n - 1)).
+  DeviceMatrix v(n, 1);
+  auto solve = [&](const std::vector<double>& x, Op op) {
+    thrust::copy(x.begin(), x.end(), v.storage().begin());
+    lu_solve(f, op, v.view());
+    return v.to_host();
+  };
+  auto norm = [](const std::vector<double>& y) {
+    double s = 0;
+    for (double a : y) s += std::abs(a);
+    return s;
+  };
+  std::vector<double> x(static_cast<std::size_t>(n), 1.0 / double(n));
+  double estimate = 0;
+  index_t last = -1;
+  for (int iteration = 0; iteration < 5; ++iteration) {
+    const std::vector<double> y = solve(x, Op::none);
+    const double e = norm(y);
+    if (iteration > 0 && e <= estimate) break;  // no progress
+    estimate = e;
+    std::vector<double> sign(y.size());
+    for (std::size_t i = 0; i < y.size(); ++i) sign[i] = y[i] >= 0 ? 1.0 : -1.0;
+    const std::vector<double> z = solve(sign, Op::transpose);
+    index_t j = 0;
+    double zx = 0;
+    for (index_t i = 0; i < n; ++i) {
+      if (std::abs(z[i]) > std::abs(z[j])) j = i;
+      zx += z[i] * x[i];
+    }
+    if (std::abs(z[j]) <= zx || j == last) break;  // a local maximum
+    std::fill(x.begin(), x.end(), 0.0);
+    x[j] = 1.0;
+    last = j;
+  }
+  std::vector<double> b(static_cast<std::size_t>(n));
+  for (index_t i = 0; i < n; ++i) b[i] = (i % 2 ? -1.0 : 1.0) * (1.0 + (n > 1 ? double(i) / double(n - 1) : 0.0));
+  estimate = std::max(estimate, 2.0 * norm(solve(b, Op::none)) / (3.0 * double(n)));
+  return std::isfinite(estimate) ? 1.0 / (norm1 * estimate) : 0.0;
 }
 
 void copy(ConstMatrixView A, MatrixView B) {

@@ -37,6 +37,16 @@ void upload_stacked(const Mat L[6], SurfaceOperators& ops) {
   ops.value = upload(L[0]);
   ops.derivatives = upload(D);
 }
+
+/// Eigen's factors (computed on the host for its condition estimate) in LAPACK form on the device.
+linalg::LuFactors device_factors(const Eigen::PartialPivLU<Mat>& lu) {
+  // Eigen's P maps row i of A to row indices[i] of P A.
+  const auto& idx = lu.permutationP().indices();
+  std::vector<index_t> perm(static_cast<std::size_t>(idx.size()));
+  for (index_t i = 0; i < idx.size(); ++i) perm[idx[i]] = i;
+  const Mat& packed = lu.matrixLU();
+  return linalg::lu_from_host(packed.rows(), packed.data(), perm);
+}
 }  // namespace
 
 std::shared_ptr<const SurfaceOperators> sh_operators(const SphereSites& interp, const SphereSites& eval, int M) {
@@ -55,14 +65,7 @@ std::shared_ptr<const SurfaceOperators> sh_operators(const SphereSites& interp, 
     throw NumericalError("spherical-harmonic interpolation matrix Y (eq. 86, degree " + to_text(M) +
                          "): reciprocal condition " + to_text(ops->condition_estimate) +
                          " <= 1e-14, the sites do not determine an interpolant");
-  {
-    // Eigen's P maps row i of Y to row indices[i] of P Y.
-    const auto& idx = lu.permutationP().indices();
-    std::vector<index_t> perm(static_cast<std::size_t>(idx.size()));
-    for (index_t i = 0; i < idx.size(); ++i) perm[idx[i]] = i;
-    const Mat packed = lu.matrixLU();
-    ops->lu = linalg::lu_from_host(packed.rows(), packed.data(), perm);
-  }
+  ops->lu = device_factors(lu);
   Mat E[6];
   Mat* all[6] = {&E[0], &E[1], &E[2], &E[3], &E[4], &E[5]};
   harmonic_matrices(eval, M, all);
@@ -172,6 +175,13 @@ std::shared_ptr<const SurfaceOperators> rbf_operators(const SphereSites& data, c
   // phi as a function of t = chi . chi_j: f(t) = (2 - 2t)^{p/2} (eq. 2.18), and f', f''.
   auto f = [p](double t, double& f0, double& f1, double& f2) {
     const double u = std::max(2.0 - 2.0 * t, 0.0);  // r^2
+    if (p >= 5) {  // one power: r^{p-4}, then r^{p-2} and r^p by products
+      const double a = std::pow(u, 0.5 * (p - 4));
+      f2 = double(p) * (p - 2) * a;
+      f1 = -double(p) * a * u;
+      f0 = a * u * u;
+      return;
+    }
     f0 = std::pow(u, 0.5 * p);
     f1 = -double(p) * std::pow(u, 0.5 * (p - 2));
     f2 = p >= 3 && u > 0 ? double(p) * (p - 2) * std::pow(u, 0.5 * (p - 4)) : 0.0;
@@ -200,15 +210,18 @@ std::shared_ptr<const SurfaceOperators> rbf_operators(const SphereSites& data, c
     throw NumericalError("RBF interpolation matrix (eq. 2.17, phi = r^" + to_text(p) + ", n_d = " + to_text(nd) +
                          "): reciprocal condition " + to_text(ops->condition_estimate) + " <= 1e-18, singular");
 
-  // [L Phi, L P] at the sample sites, for the six operators.
-  const index_t ns = sample.size();
-  Mat B[6];
-  for (auto& b : B) b.resize(ns, nd + np);
+  // [L Phi, L P] at the sample sites for the six operators, as the columns of one right-hand
+  // side B^T ((n_d + n_p) x 6 n_s, operator q in columns [q n_s, (q + 1) n_s)): [L *] = B A^{-1}
+  // <=> A [L *]^T = B^T (A is symmetric), solved on the device with the factors above (the
+  // O(n_d^2 n_s) step).
+  const index_t ns = sample.size(), m = nd + np;
   Mat PE[6];
   if (np > 0) {
     Mat* all[6] = {&PE[0], &PE[1], &PE[2], &PE[3], &PE[4], &PE[5]};
     harmonic_matrices(sample, basis.sh_degree, all);
   }
+  Mat BT(m, 6 * ns);
+#pragma omp parallel for schedule(static)
   for (index_t i = 0; i < ns; ++i) {
     const double la = sample.lambda[i], th = sample.theta[i];
     const double cl = std::cos(la), sl = std::sin(la), ct = std::cos(th), st = std::sin(th);
@@ -218,28 +231,31 @@ std::shared_ptr<const SurfaceOperators> rbf_operators(const SphereSites& data, c
     const double xll[3] = {-cl * ct, -sl * ct, 0};
     const double xlt[3] = {sl * st, -cl * st, 0};
     const double xtt[3] = {-cl * ct, -sl * ct, -st};
+    double* col[6];
+    for (int q = 0; q < 6; ++q) col[q] = BT.data() + (q * ns + i) * m;
     for (index_t j = 0; j < nd; ++j) {
       const double* y = &xd[3 * j];
       auto dot = [y](const double* a) { return a[0] * y[0] + a[1] * y[1] + a[2] * y[2]; };
       const double t = dot(x), tl = dot(xl), tt = dot(xt), tll = dot(xll), tlt = dot(xlt), ttt = dot(xtt);
       double f0, f1, f2;
       f(t, f0, f1, f2);
-      B[0](i, j) = f0;
-      B[1](i, j) = f1 * tl;
-      B[2](i, j) = f1 * tt;
-      B[3](i, j) = f2 * tl * tl + f1 * tll;
-      B[4](i, j) = f2 * tl * tt + f1 * tlt;
-      B[5](i, j) = f2 * tt * tt + f1 * ttt;
+      col[0][j] = f0;
+      col[1][j] = f1 * tl;
+      col[2][j] = f1 * tt;
+      col[3][j] = f2 * tl * tl + f1 * tll;
+      col[4][j] = f2 * tl * tt + f1 * tlt;
+      col[5][j] = f2 * tt * tt + f1 * ttt;
     }
-    if (np > 0)
-      for (int q = 0; q < 6; ++q) B[q].block(i, nd, 1, np) = PE[q].row(i);
+    for (int q = 0; q < 6; ++q)
+      for (int k = 0; k < np; ++k) col[q][nd + k] = PE[q](i, k);
   }
+  linalg::DeviceMatrix rhs = upload(BT);
+  BT.resize(0, 0);
+  linalg::lu_solve(device_factors(lu), linalg::Op::none, rhs.view());
+  const std::vector<double> solved = rhs.to_host();
+  const Eigen::Map<const Mat> LT(solved.data(), m, 6 * ns);
   Mat L[6];
-  for (int q = 0; q < 6; ++q) {
-    // [L *] = B A^{-1}  <=>  A [L *]^T = B^T  (A is symmetric)
-    Mat LT = lu.solve(B[q].transpose());
-    L[q] = LT.topRows(nd).transpose();
-  }
+  for (int q = 0; q < 6; ++q) L[q] = LT.block(0, q * ns, nd, ns).transpose();
   upload_stacked(L, *ops);
   ops->data_sites = nd;
   ops->description = "PHS r^" + to_text(p) + " + harmonics of degree <= " + to_text(basis.sh_degree) +
