@@ -13,6 +13,7 @@
 // 625 / 2,500 (Sec. 5.1.2); platelets 900 / 900 at both.
 //
 // Run:   build/studies/study_bench_cells --scale quick --out runs/bench_cells
+#include "common/force_call.hpp"
 #include "common/study.hpp"
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/cells/presets.hpp"
@@ -36,21 +37,6 @@ namespace st = rbfib::study;
 using st::Json;
 
 namespace {
-
-/// Flop rate (flop/s) of a square n x n x n DGEMM through the dense seam, median of repeats.
-double dgemm_rate(index_t n, int repeats) {
-  std::vector<double> h(static_cast<std::size_t>(n * n));
-  for (std::size_t k = 0; k < h.size(); ++k) h[k] = std::sin(0.001 * double(k));
-  const linalg::DeviceMatrix A = linalg::DeviceMatrix::from_host(n, n, h.data()), B = A;
-  linalg::DeviceMatrix C(n, n);
-  auto call = [&] { linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, A.view(), B.view(), 0.0, C.view()); };
-  call();
-  const double t = st::median_seconds(repeats, [&] {
-    call();
-    synchronize();
-  });
-  return 2.0 * double(n) * n * n / t;
-}
 
 /// Cells of the whole-blood scene: two rows of four red cells (Sec. 5.2.1: concavities facing z,
 /// rows staggered), each turned and slightly stretched so that every force is nonzero.
@@ -92,43 +78,6 @@ void set_velocities(Batch& b) {
       U[(2 * N + c) * nd + i] = -30 * x;
     }
   thrust::copy(U.begin(), U.end(), b.state().storage().begin() + 3 * N * nd);
-}
-
-/// Flops of the dense products of one call: value and derivative jets of positions (and
-/// velocities) at the sample sites and, with bending, the data sites (one product over both), and
-/// the derivatives of H - H' at the sample sites.
-struct ProductFlops {
-  double jets = 0, bending = 0;
-  double bytes = 0;  ///< operator bytes streamed (each product reads its operator once)
-};
-ProductFlops product_flops(const CellType& t, index_t N) {
-  const double nd = double(t.n_data()), ns = double(t.n_sample()), nj = double(t.jet_sites());
-  ProductFlops f;
-  const double cols = (t.model().dissipation() ? 6.0 : 3.0) * N;
-  f.jets = 2.0 * 6.0 * nj * nd * cols;
-  f.bytes = 8.0 * 6.0 * nj * nd;
-  if (t.model().bending()) {
-    f.bending = 2.0 * 5.0 * ns * nd * N;
-    f.bytes += 8.0 * 5.0 * ns * nd;
-  }
-  return f;
-}
-
-/// Median over repeated calls of each phase and of the total (after one warm-up call, which
-/// allocates the workspace).
-ForceTimings time_calls(const Batch& b, int repeats, double& total) {
-  CellForces out;
-  compute_forces(b, out);
-  std::vector<double> ph[5], tot;
-  for (int i = 0; i < repeats; ++i) {
-    ForceTimings t;
-    compute_forces(b, out, &t);
-    const double v[5] = {t.jets, t.bending_products, t.bending_kernel, t.kernels, t.reductions};
-    for (int q = 0; q < 5; ++q) ph[q].push_back(v[q]);
-    tot.push_back(t.total());
-  }
-  total = st::median(tot);
-  return {st::median(ph[0]), st::median(ph[1]), st::median(ph[2]), st::median(ph[3]), st::median(ph[4])};
 }
 
 /// max |batched - per-cell| / max |per-cell| over the force densities of cell c, against the
@@ -199,7 +148,7 @@ int main(int argc, char** argv) {
     P["dense_backend"] = linalg::dense_backend_name();
     const char* policy = std::getenv("OMP_WAIT_POLICY");
     P["OMP_WAIT_POLICY"] = policy ? policy : "unset (libgomp default: spin, then sleep)";
-    const double ceiling = dgemm_rate(dgemm_n, repeats);
+    const double ceiling = st::dgemm_rate(dgemm_n, repeats);
     const double bandwidth = 3.0 * 8.0 * double(1 << 24) / st::triad_seconds(1 << 24);
     P["dgemm_n"] = double(dgemm_n);
     Json& V = results["values"];
@@ -236,8 +185,8 @@ int main(int argc, char** argv) {
       Batch b(type, placements);
       if (type->model().dissipation()) set_velocities(b);
       double total = 0;
-      const ForceTimings t = time_calls(b, repeats, total);
-      const ProductFlops f = product_flops(*type, b.size());
+      const ForceTimings t = st::median_force_timings(b, repeats, total);
+      const st::ProductFlops f = st::product_flops(*type, b.size());
       const double rate = (f.jets + f.bending) / t.products();
       const double roofline = std::max((f.jets + f.bending) / ceiling, f.bytes / bandwidth);
       // Kernels: the site launch, bending's H kernel and the reductions.
