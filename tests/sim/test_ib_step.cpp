@@ -119,10 +119,18 @@ TEST(IbStep, AStretchedCellLosesElasticEnergyAndKeepsItsVolume) {
   ImmersedBoundary ib = periodic_box({p});
   cells::CellForces f0, f1;
   cells::compute_forces(ib.batch(0), f0);
-  for (int n = 0; n < 20; ++n) ib.step();
+  EXPECT_TRUE(ib.diagnostics(0).volume.empty());
+  double energy = 0;
+  for (int n = 0; n < 20; ++n) energy = ib.step().elastic_energy;
   cells::compute_forces(ib.batch(0), f1);
   EXPECT_LT(f1.energy, 0.99 * f0.energy);
   EXPECT_NEAR(f1.cells.volume[0], f0.cells.volume[0], 1e-3 * f0.cells.volume[0]);
+  // The step's own diagnostics (at X* of the last step, dt U from X^{n+1}) agree to that motion.
+  const cells::CellDiagnostics& d = ib.diagnostics(0);
+  ASSERT_EQ(d.volume.size(), 1u);
+  EXPECT_EQ(d.energy[0], energy);
+  EXPECT_NEAR(d.volume[0], f1.cells.volume[0], 1e-4 * f1.cells.volume[0]);
+  EXPECT_NEAR(d.area[0], f1.cells.area[0], 1e-4 * f1.cells.area[0]);
 }
 
 TEST(IbStep, AUniformBodyForceAcceleratesThePeriodicBoxUniformly) {

@@ -141,9 +141,15 @@ void Interaction::interpolate(const SortedPoints& s, const std::array<dvec, 3>& 
   with_kernel(kernel_, [&](auto k) { interpolate_sorted<decltype(k)>(s, u, U); });
 }
 
-void Interaction::spread(const SortedPoints& s, const double* F, std::array<dvec, 3>& f) {
-  for (int c = 0; c < 3; ++c) f[c].resize(grids_[c].size);
-  with_kernel(kernel_, [&](auto k) { spread_sorted<decltype(k)>(s, F, f); });
+void Interaction::spread(const SortedPoints& s, const double* F, std::array<dvec, 3>& f, bool add) {
+  for (int c = 0; c < 3; ++c) {
+    if (add)
+      require(index_t(f[c].size()) == grids_[c].size, "f[" + std::to_string(c) + "].size", f[c].size(),
+              "must equal the number of unknowns of component " + std::to_string(c) + " to add to it");
+    else
+      f[c].resize(grids_[c].size);
+  }
+  with_kernel(kernel_, [&](auto k) { spread_sorted<decltype(k)>(s, F, f, add); });
 }
 
 template <class K>
@@ -154,10 +160,11 @@ void Interaction::interpolate_sorted(const SortedPoints& s, const std::array<dve
 }
 
 template <class K>
-void Interaction::spread_sorted(const SortedPoints& s, const double* F, std::array<dvec, 3>& f) {
+void Interaction::spread_sorted(const SortedPoints& s, const double* F, std::array<dvec, 3>& f, bool add) {
   const index_t n = s.n_;
   const index_t most = std::max({f[0].size(), f[1].size(), f[2].size()});
-  for_each_index(most, detail::ZeroThree{index_t(f[0].size()), index_t(f[1].size()), index_t(f[2].size()), ptr(f[0]), ptr(f[1]), ptr(f[2])});
+  if (!add)
+    for_each_index(most, detail::ZeroThree{index_t(f[0].size()), index_t(f[1].size()), index_t(f[2].size()), ptr(f[0]), ptr(f[1]), ptr(f[2])});
   if (n == 0) return;
   sorted_f_.resize(3 * n);
   for_each_index(n, detail::GatherSorted{ptr(s.perm_), n, nullptr, F, nullptr, ptr(sorted_f_)});
@@ -209,7 +216,7 @@ void Interaction::spread_impl(const dvec& X, const dvec& F, std::array<dvec, 3>&
   const double scale = 1.0 / cell_volume();
   if (alg == Spreading::binned) {
     bin_points(ptr(X), n, sorted_);
-    spread_sorted<K>(sorted_, ptr(F), f);
+    spread_sorted<K>(sorted_, ptr(F), f, false);
     return;
   }
   for (int c = 0; c < 3; ++c) {

@@ -98,7 +98,9 @@ class Interaction {
   /// U = I u at sorted points (binned algorithm); U points to 3 s.size() values, original order.
   void interpolate(const SortedPoints& s, const std::array<dvec, 3>& u, double* U);
   /// f = S F from sorted points (binned algorithm); F points to 3 s.size() values, original order.
-  void spread(const SortedPoints& s, const double* F, std::array<dvec, 3>& f);
+  /// add: f += S F instead (f must already have each component's size), so that several point
+  /// sets spread into one field without a zeroing and a sum per set.
+  void spread(const SortedPoints& s, const double* F, std::array<dvec, 3>& f, bool add = false);
 
   /// Throws InputError naming the point and axis if some coordinate is not finite, or lies outside
   /// [origin, origin + L] along a wall axis. Called by interpolate, spread and sort.
@@ -120,7 +122,7 @@ class Interaction {
   template <class K>
   void interpolate_sorted(const SortedPoints& s, const std::array<dvec, 3>& u, double* U);
   template <class K>
-  void spread_sorted(const SortedPoints& s, const double* F, std::array<dvec, 3>& f);
+  void spread_sorted(const SortedPoints& s, const double* F, std::array<dvec, 3>& f, bool add);
 
   std::string kernel_;
   int support_ = 0;

@@ -119,6 +119,11 @@ class ImmersedBoundary {
   /// The step size of the next step (s).
   double dt() const { return ns_.options().dt; }
 
+  /// Per-cell diagnostics of batch b from the last step's force call, at the positions the forces
+  /// were computed at (X* of (b), or X^{n+1/2}): energy, dissipation, area, volume, centroid.
+  /// Empty before the first step.
+  const cells::CellDiagnostics& diagnostics(index_t b) const { return batches_.at(b).forces.cells; }
+
   /// The Eulerian force density of the last step (dyn/cm^3), per component.
   const VectorField& force_density() const { return f_; }
 
@@ -128,11 +133,12 @@ class ImmersedBoundary {
     cells::CellForces forces;
     dvec saved;               // the whole state (X^n and U) at the start of a step, restored on failure
     ib::SortedPoints start;   // X^n sorted once by grid cell: (a) and (f) interpolate there
+    ib::SortedPoints sample;  // the sample sites the forces are spread from
     dvec X, U;                // the positions being used, the interpolated velocities
   };
   struct PointEntry {
     TetheredPoints points;
-    ib::SortedPoints start;
+    ib::SortedPoints start, spread;
     dvec X0, U, F;  // X^n (also what a failure restores), velocities, spring forces
   };
   /// Sorts the batch's X^n (read in place from its state) after checking it is finite.
@@ -155,7 +161,7 @@ class ImmersedBoundary {
   FluidState state_, backup_;
   std::vector<Entry> batches_;
   std::vector<PointEntry> points_;
-  VectorField f_, f_batch_;
+  VectorField f_, scratch_;  // the force density; a scratch field for the non-binned spreadings
   long steps_ = 0;
   int level_ = 0, allowing_ = 0;  // adaptive step: current level, consecutive steps allowing a doubling
 };
