@@ -11,7 +11,8 @@
 //
 // Part 2, the whole-blood-size step (Sec. 5.2): 16 x 12 x 16 um, h = 0.2 um (80 x 60 x 80),
 // periodic in x and z, walls in y, the top one moving (shear 1000/s), B3 kernel, backward-forward
-// Euler, dt = 50 ns; 8 red cells (Skalak, bending, dissipation; 2,500 / 10,000 sites at full
+// Euler, dt = 25 ns (the seed's 50 ns is unstable with its endothelium here: see the reference);
+// 8 red cells (Skalak, bending, dissipation; 2,500 / 10,000 sites at full
 // scale, 625 / 2,500 at quick scale) in the two rows of Sec. 5.2.1 without its random moves,
 // 2 platelets (neo-Hookean, bending about the reference curvature; 900 / 900) 0.3 um above a flat
 // endothelium of 16,000 tethered points at y = 1 um (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm).
@@ -255,10 +256,13 @@ int main(int argc, char** argv) {
     P["whole_blood_red_cells"] = "8 at " + to_text(rbc_nd) + " / " + to_text(rbc_ns) + " sites (Skalak, bending, dissipation)";
     P["whole_blood_platelets"] = "2 at 900 / 900 sites (neo-Hookean, bending about the reference curvature)";
     P["whole_blood_endothelium"] = "16,000 tethered points (128 x 125 lattice) at y = 1 um, k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm";
-    P["whole_blood_dt_ns"] = 50;
+    P["whole_blood_dt_ns"] = 25;
     sim::IbOptions io;
     io.kernel = "bspline3";
-    sim::ImmersedBoundary ib = sheared(g2, 50 * units::ns, 0.0, io);
+    // dt = 25 ns, half the seed's 50 ns: at 50 ns the endothelium with the seed's k and eta is
+    // unstable in this coupling (its force grows about 15% a step); the step's cost does not
+    // depend on dt.
+    sim::ImmersedBoundary ib = sheared(g2, 25 * units::ns, 0.0, io);
     t0 = std::chrono::steady_clock::now();
     const auto rbc = cells::red_cell(rbc_nd, rbc_ns);
     const auto plt = cells::platelet(900, 900);

@@ -157,8 +157,9 @@ IbStepReport ImmersedBoundary::attempt() {
       TetheredPoints& P = q.points;
       ib_.sort(ptr(q.X0), index_t(q.X0.size()) / 3, q.start);
       interpolate(q.start, state_.u, q.U, "tethered points '" + P.name + "'");
-      blas::axpy(predict, q.U, P.X);
-      // F = -k (X* - X') - eta U^n, per point.
+      // The seed's coupling evaluates eq. 2.10 at X^n (not predicted; see the header); the
+      // midpoint coupling at X^{n+1/2}. F = -k (X - X') - eta U^n, per point.
+      if (midpoint) blas::axpy(predict, q.U, P.X);
       q.F = P.X;
       blas::axpy(-1.0, P.anchors, q.F);
       blas::scale(-P.k, q.F);
@@ -186,7 +187,12 @@ IbStepReport ImmersedBoundary::attempt() {
       for (int a = 0; a < 3; ++a) blas::axpy(1.0, scratch_[a], f_[a]);
     };
     for (Entry& e : batches_) spread_add(e.forces.positions.storage(), e.forces.force.storage(), e.sample);
-    for (PointEntry& q : points_) spread_add(q.points.X, q.F, q.spread);
+    for (PointEntry& q : points_) {
+      if (!midpoint && binned)
+        ib_.spread(q.start, ptr(q.F), f_, true);  // from X^n, sorted once for (a), (d) and (f)
+      else
+        spread_add(q.points.X, q.F, q.spread);
+    }
     r.seconds_spreading = seconds_since(t0);
     // Eq. 5.4: dt <= (1/4) sqrt(h rho / ||f||_inf).
     for (int a = 0; a < 3; ++a) r.max_force_density = std::max(r.max_force_density, blas::norm_inf(f_[a]));
