@@ -96,6 +96,7 @@ def run_study(meta, args):
         if core:
             env["OPENBLAS_CORETYPE"] = core
         info["openblas_coretype"] = env.get("OPENBLAS_CORETYPE", "unset (OpenBLAS's own detection)")
+        env["RBFIB_COMMIT"] = info["commit"]  # drivers that keep partial results record it with them
         proc = subprocess.run([exe, "--scale", args.scale, "--out", run_dir], env=env)
         info["seconds"] = time.monotonic() - t0
         if proc.returncode != 0:

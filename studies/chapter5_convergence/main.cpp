@@ -22,6 +22,9 @@
 #include "rbfib/surface/quadrature.hpp"
 
 #include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <cmath>
 
 using namespace rbfib;
@@ -51,6 +54,7 @@ struct Run {
   std::vector<double> X;   // the surface at the 1000 evaluation points, 1000 x 3 (cm)
   double volume_change = 0, seconds = 0;
   int steps = 0;
+  std::string commit;  // the commit that computed it
 };
 
 Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& eval, const st::Options& opt) {
@@ -98,6 +102,58 @@ Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& 
   return run;
 }
 
+/// At full scale each finished grid is kept in DIR/grid_r<r>.bin, written atomically (a
+/// temporary file, then a rename), so that the hours-long run continues from the grids it has
+/// when the same command is run again. Layout: one text line "rbfib chapter5_convergence grid
+/// <commit>" (the commit that computed it, from RBFIB_COMMIT, set by the harness), then binary
+/// doubles: t_end, r, steps, seconds, volume change, u at the cell centres, X at the evaluation
+/// points. Quick scale always recomputes (minutes), so a code change is never hidden by old grids.
+std::string grid_file(const st::Options& opt, int r) { return opt.out_dir + "/grid_r" + std::to_string(r) + ".bin"; }
+
+std::string this_commit() {
+  const char* c = std::getenv("RBFIB_COMMIT");
+  return c && *c ? c : "unknown";
+}
+
+void save_grid(const st::Options& opt, const Run& run, double t_end) {
+  const host_vector<double> u = run.u_centres;
+  std::vector<double> v{t_end, double(run.r), double(run.steps), run.seconds, run.volume_change};
+  v.insert(v.end(), u.begin(), u.end());
+  v.insert(v.end(), run.X.begin(), run.X.end());
+  const std::string path = grid_file(opt, run.r), tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    f << "rbfib chapter5_convergence grid " << run.commit << "\n";
+    f.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(double)));
+    f.flush();
+    if (!f) throw std::runtime_error("cannot write " + tmp);
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+/// The grid r of an earlier full-scale run to the same t_end, if its file is there and complete.
+bool load_grid(const st::Options& opt, int r, double t_end, index_t nc, index_t ne, Run& run) {
+  std::ifstream f(grid_file(opt, r), std::ios::binary);
+  if (!f) return false;
+  std::string header;
+  std::getline(f, header);
+  const std::string tag = "rbfib chapter5_convergence grid ";
+  if (header.rfind(tag, 0) != 0) return false;
+  std::vector<double> v(static_cast<std::size_t>(5 + 3 * nc + 3 * ne));
+  f.read(reinterpret_cast<char*>(v.data()), std::streamsize(v.size() * sizeof(double)));
+  if (!f || f.peek() != EOF || v[0] != t_end || v[1] != r) return false;
+  run.r = r;
+  run.commit = header.substr(tag.size());
+  run.steps = int(v[2]);
+  run.seconds = v[3];
+  run.volume_change = v[4];
+  run.u_centres = dvec(v.begin() + 5, v.begin() + 5 + 3 * nc);
+  run.X.assign(v.begin() + 5 + 3 * nc, v.end());
+  st::log(opt, "r = " + to_text(r) + ": taken from " + grid_file(opt, r) + " (computed by commit " + run.commit + ", " +
+                   to_text(run.steps) + " steps in " + to_text(run.seconds) + " s)");
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -135,7 +191,15 @@ int main(int argc, char** argv) {
 
     // ---- 2. Runs ---------------------------------------------------------------------------------
     std::vector<Run> runs;
-    for (int r = 1; r <= r_max; ++r) runs.push_back(relax(r, t_end, centres, eval, opt));
+    for (int r = 1; r <= r_max; ++r) {
+      Run run;
+      if (!full || !load_grid(opt, r, t_end, nc, eval.size(), run)) {
+        run = relax(r, t_end, centres, eval, opt);
+        run.commit = this_commit();
+        if (full) save_grid(opt, run, t_end);
+      }
+      runs.push_back(std::move(run));
+    }
 
     // ---- 3. Errors between successive grids and the seed's orders (Tables 5.1, 5.2) ------------
     Json tu = st::table({"r", "u_err_2", "order_2", "u_err_inf", "order_inf", "seconds"}, {"", "cm/s", "", "cm/s", "", "s"});
@@ -180,6 +244,12 @@ int main(int argc, char** argv) {
       }
     }
     V["max_volume_change_rel"] = worst_volume;
+    Json tr = st::table({"r", "h_um", "dt_ns", "steps", "seconds", "seconds_per_step", "volume_change_rel", "commit"},
+                        {"", "um", "ns", "", "s", "s", "", ""});
+    for (const Run& run : runs)
+      tr["rows"].push(Json::Array{Json(run.r), Json(0.8 / run.r), Json(180.0 / run.r), Json(run.steps), Json(run.seconds),
+                                  Json(run.seconds / run.steps), Json(run.volume_change), Json(run.commit)});
+    results["tables"]["runs"] = tr;
     results["tables"]["table51_velocity"] = tu;
     results["tables"]["table52_positions"] = tx;
     st::write_results(opt, results);
