@@ -28,6 +28,7 @@ const std::map<std::string, Unit>& unit_table() {
       {"erg", {1.0, {2, 1, -2}}},  {"J", {1e7, {2, 1, -2}}},
       {"P", {1.0, {-1, 1, -1}}},   {"cP", {1e-2, {-1, 1, -1}}}, {"Pa", {10.0, {-1, 1, -2}}},
       {"Hz", {1.0, {0, 0, -1}}},
+      {"rad", {1.0, {0, 0, 0}}},   {"deg", {3.14159265358979323846 / 180, {0, 0, 0}}},
   };
   return table;
 }
@@ -72,7 +73,7 @@ bool parse_units(const std::string& s, Quantity& q, std::string& why) {
     if (name == "1" && power == 1 && sign > 0) continue;  // the numerator of "1/s"
     const auto u = unit_table().find(name);
     if (u == unit_table().end()) {
-      why = "unknown unit '" + name + "' (known: m cm mm um nm, kg g mg, s ms us ns, dyn N pN, erg J, P cP Pa, Hz)";
+      why = "unknown unit '" + name + "' (known: m cm mm um nm, kg g mg, s ms us ns, dyn N pN, erg J, P cP Pa, Hz, rad deg)";
       return false;
     }
     const int p = sign * power;

@@ -6,8 +6,8 @@
 // Grammar: a number, then a unit expression: factors separated by spaces or '*', each a unit
 // name with an optional integer power ("cm^3", "s^-1"), and at most one '/' after which every
 // factor divides ("dyn s/cm", "g/cm^3", "1/s"). Unit names: lengths m, cm, mm, um (also µm),
-// nm; masses kg, g, mg; times s, ms, us (also µs), ns; dyn, N, pN; erg, J; P, cP, Pa; Hz. A
-// bare number is dimensionless.
+// nm; masses kg, g, mg; times s, ms, us (also µs), ns; dyn, N, pN; erg, J; P, cP, Pa; Hz;
+// angles rad, deg (dimensionless). A bare number is dimensionless.
 #include <string>
 
 namespace rbfib {

@@ -1,0 +1,163 @@
+// The rbfib command: check and run scenes (lib/rbfib/scene, docs/scenes.md).
+//
+//   rbfib check SCENE.yaml                  validate; print the resolved scene with units, the
+//                                           dimensionless groups, eq. 5.4's bound, memory
+//   rbfib run SCENE.yaml --out DIR [--until T]
+//                                           run it; progress on stdout; DIR/diagnostics.csv
+//
+// Exit status: 0 done, 2 bad input (one line naming the field and the value), 3 a numerical
+// failure (the run stops, the message names the step, time and cause; what was written stays).
+#include "rbfib/core/error.hpp"
+#include "rbfib/core/quantity.hpp"
+#include "rbfib/core/units.hpp"
+#include "rbfib/scene/scene.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <unistd.h>
+
+using namespace rbfib;
+
+namespace {
+
+/// The shear rate between the walls (1/s): the largest wall-velocity difference over the gap.
+double shear_rate(const scene::Scene& s) {
+  double g = 0;
+  for (int d = 0; d < 3; ++d)
+    if (!s.grid.periodic(d))
+      for (int a = 0; a < 3; ++a) g = std::max(g, std::abs(s.walls[d][1][a] - s.walls[d][0][a]) / s.grid.length[d]);
+  return g;
+}
+
+void print_check(const scene::Scene& s) {
+  std::cout << scene::describe(s);
+  const double rho = s.fluid.density, mu = s.fluid.viscosity, gdot = shear_rate(s);
+  const double h = std::min({s.grid.h(0), s.grid.h(1), s.grid.h(2)}), dt = s.fluid_options.dt;
+  std::cout << "dimensionless groups (shear rate " << gdot << " 1/s between the walls):\n";
+  for (const scene::CellTypeEntry& t : s.types) {
+    // The cell's size: the largest distance of its reference surface from its centre.
+    double R = 0;
+    for (index_t i = 0; i < t.spec.data_sites.size(); ++i) {
+      double x[3];
+      t.spec.shape.position(t.spec.data_sites.lambda[i], t.spec.data_sites.theta[i], x);
+      R = std::max(R, std::hypot(x[0], x[1], x[2]));
+    }
+    std::cout << "  '" << t.spec.name << "': radius " << R / units::um << " um, Reynolds rho gdot R^2 / mu = " << rho * gdot * R * R / mu;
+    if (!t.spec.model.elastic.empty())
+      std::cout << ", capillary mu gdot R / G (G = " << t.spec.model.elastic[0].a << " dyn/cm, the first energy's shear modulus) = "
+                << mu * gdot * R / t.spec.model.elastic[0].a;
+    std::cout << "\n";
+  }
+  // Eq. 5.4: dt <= (1/4) sqrt(h rho / ||f||_inf), i.e. ||f||_inf <= h rho / (16 dt^2).
+  std::cout << "stopping condition (eq. 5.4) at dt = " << dt / units::ns << " ns: the run stops when the spread force density exceeds "
+            << h * rho / (16 * dt * dt) << " dyn/cm^3\n";
+  double cells_bytes = 0;
+  for (const scene::CellTypeEntry& t : s.types) {
+    const double nd = double(t.spec.data_sites.size()), ns = double(t.spec.sample_sites.size());
+    cells_bytes += 8.0 * 6.0 * (ns + (t.spec.model.bending() ? nd : 0)) * nd;
+  }
+  const double grid_bytes = 8.0 * 40.0 * double(s.grid.cells[0]) * s.grid.cells[1] * s.grid.cells[2];
+  std::cout << "memory, roughly: fluid " << grid_bytes / 1048576 << " MiB (about 40 grid vectors), cell operators "
+            << cells_bytes / 1048576 << " MiB\n";
+}
+
+int run(const scene::Scene& s, const std::string& out, double until) {
+  std::filesystem::create_directories(out);
+  {
+    std::ofstream copy(out + "/scene.yaml");
+    copy << s.source;
+  }
+  const double t_end = until > 0 ? std::min(until, s.t_end) : s.t_end;
+  std::cout << scene::describe(s) << "building the cell types and the solver ..." << std::endl;
+  sim::ImmersedBoundary ib = scene::build(s);
+  std::ofstream csv(out + "/diagnostics.csv");
+  csv << "step,t_s,dt_s,max_velocity_cm_s,kinetic_energy_erg,elastic_energy_erg,max_force_density_dyn_cm3,dt_bound_s,"
+         "seconds_interpolation,seconds_forces,seconds_spreading,seconds_fluid";
+  for (index_t b = 0; b < ib.batches(); ++b)
+    for (index_t c = 0; c < ib.batch(b).size(); ++c) csv << ",volume_" << ib.batch(b).type().name() << "_" << c << "_um3";
+  csv << "\n";
+  const bool terminal = isatty(STDOUT_FILENO);
+  const auto start = std::chrono::steady_clock::now();
+  auto last_print = start;
+  long steps = 0;
+  while (ib.time() < t_end * (1 - 1e-12)) {
+    sim::IbStepReport r;
+    try {
+      r = ib.step();
+    } catch (const NumericalError& e) {
+      csv.flush();
+      std::cout << (terminal ? "\n" : "") << "rbfib: stopped: " << e.what() << std::endl;
+      return 3;
+    }
+    ++steps;
+    if (steps % s.diagnostics_every == 0) {
+      csv << ib.step_count() << "," << ib.time() << "," << r.dt << "," << r.max_velocity << "," << r.kinetic_energy << ","
+          << r.elastic_energy << "," << r.max_force_density << "," << r.dt_bound << "," << r.seconds_interpolation << ","
+          << r.seconds_forces << "," << r.seconds_spreading << "," << r.seconds_fluid;
+      for (index_t b = 0; b < ib.batches(); ++b)
+        for (double v : ib.diagnostics(b).volume) csv << "," << v / (units::um * units::um * units::um);
+      csv << "\n";
+    }
+    const auto now = std::chrono::steady_clock::now();
+    const double since = std::chrono::duration<double>(now - last_print).count();
+    if (since > (terminal ? 0.5 : 5.0) || ib.time() >= t_end * (1 - 1e-12)) {
+      last_print = now;
+      const double wall = std::chrono::duration<double>(now - start).count();
+      const double rate = steps / wall, left = std::max(0.0, (t_end - ib.time()) / r.dt / rate);
+      char line[256];
+      std::snprintf(line, sizeof line, "t = %.4g us of %.4g (%5.1f%%), step %ld, %.3g steps/s, ETA %.0f s, max|u| = %.3g mm/s",
+                    ib.time() / units::us, t_end / units::us, 100 * ib.time() / t_end, ib.step_count(), rate, left,
+                    r.max_velocity * 10);
+      std::cout << (terminal ? "\r" : "") << line << (terminal ? "" : "\n") << std::flush;
+    }
+  }
+  csv.flush();
+  std::cout << (terminal ? "\n" : "") << "done: " << steps << " steps to t = " << ib.time() / units::us << " us in "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s; " << out
+            << "/diagnostics.csv" << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"rbfib: immersed-boundary simulations of red cells, platelets and endothelium in plasma (scenes in YAML)"};
+  app.require_subcommand(1);
+  std::string scene_path, out, until_text;
+  CLI::App* check = app.add_subcommand("check", "validate a scene and print it resolved, with units and dimensionless groups");
+  check->add_option("scene", scene_path, "the scene file (YAML)")->required();
+  CLI::App* runc = app.add_subcommand("run", "run a scene; progress on stdout, per-step diagnostics in OUT/diagnostics.csv");
+  runc->add_option("scene", scene_path, "the scene file (YAML)")->required();
+  runc->add_option("--out", out, "the output directory")->required();
+  runc->add_option("--until", until_text, "stop at this simulated time (with its unit, e.g. '10 us'); default: the scene's end");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    const scene::Scene s = scene::load_scene(scene_path);
+    if (*check) {
+      print_check(s);
+      return 0;
+    }
+    const double until = until_text.empty() ? 0.0 : parse_quantity(until_text, "s", "--until");
+    if (!until_text.empty() && !(until > 0)) throw InputError("--until", until_text, "must be positive");
+    return run(s, out, until);
+  } catch (const InputError& e) {
+    std::cerr << "rbfib: " << e.what() << std::endl;
+    return 2;
+  } catch (const NumericalError& e) {
+    std::cerr << "rbfib: " << e.what() << std::endl;
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "rbfib: " << e.what() << std::endl;
+    return 1;
+  }
+}

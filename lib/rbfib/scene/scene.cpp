@@ -1,0 +1,476 @@
+#include "rbfib/scene/scene.hpp"
+
+#include "rbfib/core/error.hpp"
+#include "rbfib/core/quantity.hpp"
+#include "rbfib/core/units.hpp"
+#include "rbfib/grid/box.hpp"
+#include "rbfib/ib/kernels.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace rbfib::scene {
+
+namespace {
+
+const char* axis_name[3] = {"x", "y", "z"};
+
+/// One YAML map being read: every key must be read, or finish() reports it as unknown; every
+/// value is checked for type, dimension and range, and errors name the path of the field.
+class Fields {
+ public:
+  Fields(YAML::Node node, std::string path) : node_(std::move(node)), path_(std::move(path)) {
+    if (!node_.IsMap()) throw InputError(path_.empty() ? "scene" : path_, text(node_), "expected a map of keys and values");
+  }
+  std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  bool has(const std::string& key) const { return bool(node_[key]); }
+
+  YAML::Node get(const std::string& key) const {
+    read_.insert(key);
+    const YAML::Node n = node_[key];
+    if (!n) throw InputError(at(key), "(missing)", "required");
+    return n;
+  }
+  Fields map(const std::string& key) const { return Fields(get(key), at(key)); }
+  std::vector<Fields> list_of_maps(const std::string& key) const {
+    const YAML::Node n = get(key);
+    if (!n.IsSequence()) throw InputError(at(key), text(n), "expected a list");
+    std::vector<Fields> out;
+    for (std::size_t i = 0; i < n.size(); ++i) out.emplace_back(n[i], at(key) + "[" + std::to_string(i) + "]");
+    return out;
+  }
+  std::string string(const std::string& key) const { return scalar(get(key), at(key)); }
+  std::string choice(const std::string& key, const std::vector<std::string>& options) const {
+    const std::string v = string(key);
+    if (std::find(options.begin(), options.end(), v) == options.end()) {
+      std::string list;
+      for (const auto& o : options) list += (list.empty() ? "" : ", ") + o;
+      throw InputError(at(key), v, "must be one of: " + list);
+    }
+    return v;
+  }
+  double quantity(const std::string& key, const std::string& unit) const {
+    return parse_quantity(scalar(get(key), at(key)), unit, at(key));
+  }
+  double positive(const std::string& key, const std::string& unit) const {
+    const double v = quantity(key, unit);
+    if (!(v > 0)) throw InputError(at(key), scalar(node_[key], at(key)), "must be positive");
+    return v;
+  }
+  double nonnegative(const std::string& key, const std::string& unit) const {
+    const double v = quantity(key, unit);
+    if (!(v >= 0)) throw InputError(at(key), scalar(node_[key], at(key)), "must be >= 0");
+    return v;
+  }
+  std::array<double, 3> triple(const std::string& key, const std::string& unit) const {
+    const YAML::Node n = get(key);
+    if (!n.IsSequence() || n.size() != 3) throw InputError(at(key), text(n), "expected a list of 3 values");
+    std::array<double, 3> v{};
+    for (int d = 0; d < 3; ++d) {
+      const std::string f = at(key) + "[" + std::to_string(d) + "]";
+      v[d] = parse_quantity(scalar(n[d], f), unit, f);
+    }
+    return v;
+  }
+  long integer(const std::string& key, long lo, long hi) const {
+    const std::string v = scalar(get(key), at(key));
+    char* end = nullptr;
+    const long x = std::strtol(v.c_str(), &end, 10);
+    if (end == v.c_str() || *end != '\0') throw InputError(at(key), v, "expected an integer");
+    if (x < lo || x > hi) throw InputError(at(key), v, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return x;
+  }
+  /// Throws naming the first key that was never read.
+  void finish() const {
+    for (const auto& kv : node_) {
+      const std::string k = kv.first.as<std::string>();
+      if (!read_.count(k)) throw InputError(at(k), text(kv.second), "unknown key here");
+    }
+  }
+
+  static std::string text(const YAML::Node& n) {
+    if (n.IsScalar()) return n.Scalar();
+    std::ostringstream s;
+    s << YAML::Dump(n);
+    std::string t = s.str();
+    std::replace(t.begin(), t.end(), '\n', ' ');
+    return t.size() > 60 ? t.substr(0, 57) + "..." : t;
+  }
+  static std::string scalar(const YAML::Node& n, const std::string& field) {
+    if (!n.IsScalar()) throw InputError(field, text(n), "expected a single value");
+    return n.Scalar();
+  }
+
+ private:
+  YAML::Node node_;
+  std::string path_;
+  mutable std::set<std::string> read_;
+};
+
+void read_domain(const Fields& f, Scene& s) {
+  const std::array<double, 3> L = f.triple("size", "um");
+  for (int d = 0; d < 3; ++d)
+    if (!(L[d] > 0)) throw InputError(f.at("size") + "[" + std::to_string(d) + "]", to_text(L[d] / units::um) + " um", "must be positive");
+  std::array<bool, 3> periodic{false, false, false};
+  const YAML::Node p = f.get("periodic");
+  if (!p.IsSequence()) throw InputError(f.at("periodic"), Fields::text(p), "expected a list of axis names, e.g. [x, z]");
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::string field = f.at("periodic") + "[" + std::to_string(i) + "]";
+    const std::string a = Fields::scalar(p[i], field);
+    const auto it = std::find(axis_name, axis_name + 3, a);
+    if (it == axis_name + 3) throw InputError(field, a, "must be an axis name: x, y or z");
+    periodic[it - axis_name] = true;
+  }
+  bool any_wall = false;
+  for (int d = 0; d < 3; ++d) any_wall = any_wall || !periodic[d];
+  if (any_wall) {
+    const Fields walls = f.map("walls");
+    for (int d = 0; d < 3; ++d) {
+      if (periodic[d]) continue;
+      const Fields w = walls.map(axis_name[d]);
+      for (int side = 0; side < 2; ++side) {
+        const char* key = side ? "upper" : "lower";
+        s.walls[d][side] = w.triple(key, "cm/s");
+        if (s.walls[d][side][d] != 0)
+          throw InputError(w.at(key) + "[" + std::to_string(d) + "]", to_text(s.walls[d][side][d]) + " cm/s",
+                           "a wall moves in its own plane: its normal velocity must be 0");
+      }
+      w.finish();
+    }
+    walls.finish();
+  }
+  if (f.has("initial_flow")) s.initial_shear = f.choice("initial_flow", {"rest", "shear"}) == "shear";
+  if (s.initial_shear && !any_wall) throw InputError(f.at("initial_flow"), "shear", "needs walls to shear between");
+  s.grid.length = L;
+  for (int d = 0; d < 3; ++d) s.grid.lower[d] = s.grid.upper[d] = periodic[d] ? MacBoundary::periodic : MacBoundary::dirichlet;
+  f.finish();
+}
+
+void read_grid(const Fields& f, Scene& s) {
+  if (f.has("h") == f.has("cells")) throw InputError(f.at("h"), "", "give exactly one of grid.h and grid.cells");
+  for (int d = 0; d < 3; ++d) {
+    int n = 0;
+    if (f.has("h")) {
+      const double h = f.positive("h", "um");
+      const double c = s.grid.length[d] / h;
+      n = int(std::lround(c));
+      if (std::abs(c - n) > 1e-9 * c)
+        throw InputError(f.at("h"), to_text(h / units::um) + " um",
+                         "must divide the box: " + std::string(axis_name[d]) + " length / h = " + to_text(c) + " is not an integer");
+    } else {
+      const YAML::Node c = f.get("cells");
+      if (!c.IsSequence() || c.size() != 3) throw InputError(f.at("cells"), Fields::text(c), "expected a list of 3 integers");
+      const std::string field = f.at("cells") + "[" + std::to_string(d) + "]";
+      const std::string v = Fields::scalar(c[d], field);
+      char* end = nullptr;
+      n = int(std::strtol(v.c_str(), &end, 10));
+      if (end == v.c_str() || *end != '\0') throw InputError(field, v, "expected an integer");
+    }
+    if (n < MacGrid::min_cells || n > 4096)
+      throw InputError(f.at(f.has("h") ? "h" : "cells"), to_text(n) + " cells along " + axis_name[d],
+                       "each axis needs between " + to_text(MacGrid::min_cells) + " and 4096 cells");
+    s.grid.cells[d] = n;
+  }
+  s.grid.dims = 3;
+  f.finish();
+}
+
+void read_time(const Fields& f, Scene& s) {
+  const std::string integrator = f.choice("integrator", {"backward_forward_euler", "peskin_two_stage"});
+  s.fluid_options.integrator =
+      integrator == "peskin_two_stage" ? TimeIntegrator::peskin_two_stage : TimeIntegrator::backward_forward_euler;
+  if (f.has("coupling")) s.ib.coupling = f.choice("coupling", {"seed", "midpoint"}) == "midpoint" ? sim::Coupling::midpoint : sim::Coupling::seed;
+  if (s.ib.coupling == sim::Coupling::midpoint && s.fluid_options.integrator != TimeIntegrator::peskin_two_stage)
+    throw InputError(f.at("coupling"), "midpoint", "needs time.integrator = peskin_two_stage");
+  s.fluid_options.dt = f.positive("dt", "s");
+  s.t_end = f.positive("end", "s");
+  if (s.t_end < s.fluid_options.dt)
+    throw InputError(f.at("end"), to_text(s.t_end) + " s", "must be at least one step (dt = " + to_text(s.fluid_options.dt) + " s)");
+  if (f.has("adaptive")) {
+    const Fields a = f.map("adaptive");
+    s.ib.adaptive.enabled = true;
+    s.ib.adaptive.dt_min = a.positive("dt_min", "s");
+    s.ib.adaptive.max_level = int(a.integer("max_level", 0, 30));
+    s.ib.adaptive.grow_after = a.has("grow_after") ? int(a.integer("grow_after", 1, 1000000)) : 16;
+    const double k = std::log2(s.fluid_options.dt / s.ib.adaptive.dt_min);
+    if (std::abs(k - std::round(k)) > 1e-9 || k < -1e-9 || k > s.ib.adaptive.max_level + 1e-9)
+      throw InputError(f.at("dt"), to_text(s.fluid_options.dt) + " s",
+                       "with the adaptive step, dt must be 2^k dt_min with k in [0, max_level]");
+    a.finish();
+  }
+  f.finish();
+}
+
+void read_ib(const Fields& f, Scene& s) {
+  const std::vector<std::string> kernels = ib::kernel_names();
+  s.ib.kernel = f.choice("kernel", kernels);
+  const int support = ib::kernel_support(s.ib.kernel);
+  for (int d = 0; d < 3; ++d)
+    if (s.grid.cells[d] < support + 1)
+      throw InputError(f.at("kernel"), s.ib.kernel,
+                       "spans " + to_text(support) + " cells, more than the grid's " + to_text(s.grid.cells[d]) + " along " +
+                           axis_name[d] + " allow (at least support + 1)");
+  if (f.has("body_force")) s.ib.body_force = f.triple("body_force", "dyn/cm^3");
+  f.finish();
+}
+
+cells::ForceModel read_model(const Fields& f) {
+  cells::ForceModel m;
+  if (f.has("elastic")) {
+    for (const Fields& e : f.list_of_maps("elastic")) {
+      const std::string law = e.choice("law", {"skalak", "neo_hookean", "neo_hookean_paper", "tension"});
+      if (law == "skalak") m.elastic.push_back(mechanics::EnergyDensity::skalak(e.positive("E", "dyn/cm"), e.positive("G", "dyn/cm")));
+      if (law == "neo_hookean")
+        m.elastic.push_back(mechanics::EnergyDensity::neo_hookean_dissertation(e.positive("E", "dyn/cm"), e.positive("G", "dyn/cm")));
+      if (law == "neo_hookean_paper")
+        m.elastic.push_back(mechanics::EnergyDensity::neo_hookean_paper(e.positive("Gs", "dyn/cm"), e.positive("A", "")));
+      if (law == "tension") m.elastic.push_back(mechanics::EnergyDensity::surface_tension(e.positive("sigma", "dyn/cm")));
+      e.finish();
+    }
+    if (int(m.elastic.size()) > cells::ForceModel::max_elastic_energies)
+      throw InputError(f.at("elastic"), to_text(m.elastic.size()) + " energies",
+                       "at most " + to_text(cells::ForceModel::max_elastic_energies));
+  }
+  if (f.has("kappa")) m.kappa = f.nonnegative("kappa", "erg");
+  if (f.has("H0")) {
+    const std::string v = f.string("H0");
+    if (v == "reference") m.H0_reference = true;
+    else m.H0 = parse_quantity(v, "1/cm", f.at("H0"));
+  }
+  if (f.has("nu")) m.nu = f.nonnegative("nu", "dyn s/cm");
+  f.finish();
+  return m;
+}
+
+CellTypeEntry read_type(const Fields& f) {
+  CellTypeEntry t;
+  t.preset = f.choice("preset", {"red_cell", "platelet", "skalak_sphere", "chapter3_red_cell"});
+  auto sites = [&](const char* key, long fallback) { return f.has(key) ? index_t(f.integer(key, 16, 200000)) : index_t(fallback); };
+  if (t.preset == "red_cell") t.spec = cells::red_cell_spec(sites("data_sites", 2500), sites("sample_sites", 10000));
+  if (t.preset == "platelet") t.spec = cells::platelet_spec(sites("data_sites", 900), sites("sample_sites", 900));
+  if (t.preset == "skalak_sphere")
+    t.spec = cells::skalak_sphere_spec(f.positive("radius", "um"), sites("data_sites", 625), sites("sample_sites", 880));
+  if (t.preset == "chapter3_red_cell")
+    t.spec = cells::chapter3_red_cell_spec(f.has("degree") ? int(f.integer("degree", 1, 40)) : 19, sites("sample_sites", 8281));
+  t.spec.name = f.string("name");
+  if (f.has("model")) t.spec.model = read_model(f.map("model"));
+  f.finish();
+  return t;
+}
+
+CellEntry read_cell(const Fields& f, const Scene& s) {
+  CellEntry c;
+  c.type = f.string("type");
+  const bool known = std::any_of(s.types.begin(), s.types.end(), [&](const CellTypeEntry& t) { return t.spec.name == c.type; });
+  if (!known) throw InputError(f.at("type"), c.type, "is not the name of an entry of cell_types");
+  c.placement.center = f.triple("center", "um");
+  for (int d = 0; d < 3; ++d) {
+    const double x = c.placement.center[d], L = s.grid.length[d];
+    if (!s.grid.periodic(d) && !(x > 0 && x < L))
+      throw InputError(f.at("center") + "[" + std::to_string(d) + "]", to_text(x / units::um) + " um",
+                       "lies outside the walls (0, " + to_text(L / units::um) + " um)");
+  }
+  if (f.has("axis")) {
+    c.placement.axis = f.triple("axis", "");
+    const double n = std::hypot(c.placement.axis[0], c.placement.axis[1], c.placement.axis[2]);
+    if (!(n > 0)) throw InputError(f.at("axis"), "[0, 0, 0]", "a rotation axis must be nonzero");
+  }
+  if (f.has("angle")) c.placement.angle = f.quantity("angle", "");
+  if (f.has("stretch")) {
+    c.placement.stretch = f.triple("stretch", "");
+    for (int d = 0; d < 3; ++d)
+      if (!(c.placement.stretch[d] > 0.1 && c.placement.stretch[d] < 10))
+        throw InputError(f.at("stretch") + "[" + std::to_string(d) + "]", to_text(c.placement.stretch[d]), "must lie in (0.1, 10)");
+  }
+  if (f.has("force")) c.force = f.triple("force", "dyn");
+  f.finish();
+  return c;
+}
+
+sim::TetheredPoints read_points(const Fields& f, const Scene& s) {
+  sim::TetheredPoints p;
+  p.name = f.string("name");
+  const Fields plane = f.map("plane");
+  int normal = -1;
+  for (int d = 0; d < 3; ++d)
+    if (plane.has(axis_name[d])) {
+      if (normal >= 0) throw InputError(plane.at(axis_name[d]), "", "a plane is given by one coordinate (x, y or z)");
+      normal = d;
+    }
+  if (normal < 0) throw InputError(plane.at("y"), "(missing)", "give the plane's position along one axis, e.g. y: 1 um");
+  const double at = plane.quantity(axis_name[normal], "um");
+  if (!(at >= 0 && at <= s.grid.length[normal]))
+    throw InputError(plane.at(axis_name[normal]), to_text(at / units::um) + " um", "lies outside the box");
+  const YAML::Node counts = plane.get("points");
+  if (!counts.IsSequence() || counts.size() != 2) throw InputError(plane.at("points"), Fields::text(counts), "expected [n1, n2]");
+  int n[2];
+  for (int i = 0; i < 2; ++i) {
+    const std::string field = plane.at("points") + "[" + std::to_string(i) + "]";
+    const std::string v = Fields::scalar(counts[i], field);
+    char* end = nullptr;
+    n[i] = int(std::strtol(v.c_str(), &end, 10));
+    if (end == v.c_str() || *end != '\0' || n[i] < 1 || n[i] > 4096) throw InputError(field, v, "expected an integer in [1, 4096]");
+  }
+  plane.finish();
+  // A lattice over the two other axes, cell-centred: points (i + 1/2) L / n.
+  const int a = (normal + 1) % 3, b = (normal + 2) % 3;
+  const index_t total = index_t(n[0]) * n[1];
+  std::vector<double> X(static_cast<std::size_t>(3 * total));
+  for (int i = 0; i < n[0]; ++i)
+    for (int j = 0; j < n[1]; ++j) {
+      const index_t q = index_t(i) * n[1] + j;
+      X[a * total + q] = (i + 0.5) * s.grid.length[a] / n[0];
+      X[b * total + q] = (j + 0.5) * s.grid.length[b] / n[1];
+      X[normal * total + q] = at;
+    }
+  p.X = dvec(X.begin(), X.end());
+  p.anchors = p.X;
+  p.k = f.nonnegative("k", "dyn/cm");
+  p.eta = f.nonnegative("eta", "dyn s/cm");
+  f.finish();
+  return p;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& yaml, const std::string& origin) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml);
+  } catch (const YAML::Exception& e) {
+    throw InputError(origin, "(YAML)", std::string("not valid YAML: ") + e.what());
+  }
+  if (!root || root.IsNull()) throw InputError(origin, "(empty)", "a scene file needs at least domain, fluid, grid, time, ib");
+  const Fields f(root, "");
+  Scene s;
+  s.source = yaml;
+  s.name = f.has("name") ? f.string("name") : origin;
+  read_domain(f.map("domain"), s);
+  {
+    const Fields fl = f.map("fluid");
+    s.fluid.density = fl.positive("density", "g/cm^3");
+    s.fluid.viscosity = fl.positive("viscosity", "P");
+    fl.finish();
+  }
+  read_grid(f.map("grid"), s);
+  read_time(f.map("time"), s);
+  read_ib(f.map("ib"), s);
+  if (f.has("cell_types"))
+    for (const Fields& t : f.list_of_maps("cell_types")) {
+      CellTypeEntry e = read_type(t);
+      for (const CellTypeEntry& o : s.types)
+        if (o.spec.name == e.spec.name) throw InputError(t.at("name"), e.spec.name, "names another cell type too");
+      s.types.push_back(std::move(e));
+    }
+  if (f.has("cells"))
+    for (const Fields& c : f.list_of_maps("cells")) s.cells.push_back(read_cell(c, s));
+  if (f.has("tethered_points"))
+    for (const Fields& p : f.list_of_maps("tethered_points")) s.point_sets.push_back(read_points(p, s));
+  if (f.has("output")) {
+    const Fields o = f.map("output");
+    if (o.has("diagnostics_every")) s.diagnostics_every = int(o.integer("diagnostics_every", 1, 1000000000));
+    o.finish();
+  }
+  f.finish();
+  return s;
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("scene file", path, "cannot be read");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string name = path.substr(path.find_last_of('/') + 1);
+  return parse_scene(text.str(), name);
+}
+
+sim::ImmersedBoundary build(const Scene& s) {
+  const auto walls = s.walls;
+  BoundaryVelocity boundary = [walls](int a, int d, int side, double, double, double, double) { return walls[d][side][a]; };
+  sim::ImmersedBoundary ib(s.grid, s.fluid, s.fluid_options, boundary, s.ib);
+  if (s.initial_shear) {
+    // The steady flow between the walls: linear in the wall-normal coordinate for each wall axis
+    // (one wall axis at most carries a shear; with several, their profiles add).
+    for (int a = 0; a < 3; ++a)
+      ib.fluid_state().u[a] = sample(ib.fluid().operators().component_box(a), [&](double x, double y, double z) {
+        const double p[3] = {x, y, z};
+        double u = 0;
+        for (int d = 0; d < 3; ++d)
+          if (!s.grid.periodic(d)) u += walls[d][0][a] + (walls[d][1][a] - walls[d][0][a]) * p[d] / s.grid.length[d];
+        return u;
+      });
+  }
+  for (const CellTypeEntry& t : s.types) {
+    std::vector<cells::Placement> placements;
+    std::vector<std::array<double, 3>> forces;
+    for (const CellEntry& c : s.cells)
+      if (c.type == t.spec.name) {
+        placements.push_back(c.placement);
+        forces.push_back(c.force);
+      }
+    if (placements.empty()) continue;
+    const auto type = std::make_shared<const cells::CellType>(t.spec);
+    cells::Batch batch(type, placements);
+    for (std::size_t c = 0; c < forces.size(); ++c) batch.set_body_force(index_t(c), forces[c]);
+    // Every data site must lie between the walls.
+    const std::vector<double> X = batch.positions_host();
+    const index_t nd = type->n_data(), N = batch.size();
+    for (int d = 0; d < 3; ++d) {
+      if (s.grid.periodic(d)) continue;
+      for (index_t c = 0; c < N; ++c)
+        for (index_t i = 0; i < nd; ++i) {
+          const double x = X[(d * N + c) * nd + i];
+          if (!(x > 0 && x < s.grid.length[d]))
+            throw InputError("cells (type '" + t.spec.name + "', cell " + to_text(c) + " of that type)", to_text(x / units::um) + " um",
+                             std::string("reaches through a wall: its surface crosses ") + axis_name[d] + " = 0 or " +
+                                 to_text(s.grid.length[d] / units::um) + " um");
+        }
+    }
+    ib.add(std::move(batch));
+  }
+  for (const sim::TetheredPoints& p : s.point_sets) ib.add(p);
+  return ib;
+}
+
+std::string describe(const Scene& s) {
+  std::ostringstream o;
+  const MacGrid& g = s.grid;
+  o << "scene '" << s.name << "'\n";
+  o << "  box " << g.length[0] / units::um << " x " << g.length[1] / units::um << " x " << g.length[2] / units::um << " um;";
+  for (int d = 0; d < 3; ++d) {
+    o << " " << axis_name[d] << (g.periodic(d) ? " periodic" : " walls");
+    if (!g.periodic(d))
+      o << " (lower [" << s.walls[d][0][0] * 10 << ", " << s.walls[d][0][1] * 10 << ", " << s.walls[d][0][2] * 10 << "] mm/s, upper ["
+        << s.walls[d][1][0] * 10 << ", " << s.walls[d][1][1] * 10 << ", " << s.walls[d][1][2] * 10 << "] mm/s)";
+    o << (d < 2 ? "," : "\n");
+  }
+  o << "  grid " << g.cells[0] << " x " << g.cells[1] << " x " << g.cells[2] << ", h = " << g.h(0) / units::um << " x "
+    << g.h(1) / units::um << " x " << g.h(2) / units::um << " um\n";
+  o << "  fluid density " << s.fluid.density << " g/cm^3, viscosity " << s.fluid.viscosity / units::cP << " cP; flow at t = 0: "
+    << (s.initial_shear ? "the steady shear" : "rest") << "\n";
+  o << "  time " << to_string(s.fluid_options.integrator) << ", coupling " << sim::to_string(s.ib.coupling) << ", dt = "
+    << s.fluid_options.dt / units::ns << " ns, end " << s.t_end / units::us << " us ("
+    << std::llround(s.t_end / s.fluid_options.dt) << " steps at dt)";
+  if (s.ib.adaptive.enabled)
+    o << "; adaptive: dt = 2^k x " << s.ib.adaptive.dt_min / units::ns << " ns, k <= " << s.ib.adaptive.max_level << ", growing after "
+      << s.ib.adaptive.grow_after << " steps";
+  o << "\n  kernel " << s.ib.kernel << "; body force [" << s.ib.body_force[0] << ", " << s.ib.body_force[1] << ", "
+    << s.ib.body_force[2] << "] dyn/cm^3\n";
+  for (const CellTypeEntry& t : s.types) {
+    const auto n = std::count_if(s.cells.begin(), s.cells.end(), [&](const CellEntry& c) { return c.type == t.spec.name; });
+    o << "  cell type '" << t.spec.name << "' (preset " << t.preset << "): " << t.spec.data_sites.size() << " data / "
+      << t.spec.sample_sites.size() << " sample sites; " << t.spec.model.describe() << "; " << n << " cell(s)\n";
+  }
+  for (const sim::TetheredPoints& p : s.point_sets)
+    o << "  tethered points '" << p.name << "': " << p.X.size() / 3 << " points, k = " << p.k << " dyn/cm, eta = " << p.eta
+      << " dyn s/cm\n";
+  return o.str();
+}
+
+}  // namespace rbfib::scene

@@ -1,0 +1,61 @@
+#pragma once
+// A scene: the box, the flow, the cells and the point sets of a run, read from YAML with every
+// physical quantity carrying its unit ("16 um", "1 cP", "50 ns", "2.5e-3 dyn/cm"; see
+// core/quantity.hpp), converted once here to CGS, and built into a coupled IB step (sim/).
+//
+// Reading is strict: an unknown key, a missing required key, a value of the wrong type or
+// dimension, or a value out of range is an InputError naming the field (its path in the file,
+// e.g. "cells[2].center[1]"), the value and what was expected; nothing is silently defaulted
+// except the optional keys documented in docs/scenes.md with their defaults.
+#include "rbfib/cells/presets.hpp"
+#include "rbfib/sim/ib_step.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace rbfib::scene {
+
+struct CellTypeEntry {
+  cells::CellTypeSpec spec;
+  std::string preset;  ///< the preset it started from
+};
+
+struct CellEntry {
+  std::string type;  ///< a name in Scene::types
+  cells::Placement placement;
+  std::array<double, 3> force{0, 0, 0};  ///< constant total force on the cell (dyn)
+};
+
+struct Scene {
+  std::string name;    ///< from the file name or the "name" key
+  std::string source;  ///< the YAML text as read (kept with the output)
+  MacGrid grid;
+  FluidParameters fluid;
+  NavierStokesOptions fluid_options;
+  sim::IbOptions ib;
+  /// Velocity of each wall (cm/s), [axis][side]; zero on periodic axes.
+  std::array<std::array<std::array<double, 3>, 2>, 3> walls{};
+  /// Start the flow as the steady shear between the walls (else at rest).
+  bool initial_shear = false;
+  double t_end = 0;  ///< s
+  std::vector<CellTypeEntry> types;
+  std::vector<CellEntry> cells;
+  std::vector<sim::TetheredPoints> point_sets;
+  int diagnostics_every = 1;  ///< steps between rows of the diagnostics table
+};
+
+/// Reads a scene from YAML text; `origin` names it in messages (a file name).
+Scene parse_scene(const std::string& yaml, const std::string& origin);
+/// Reads a scene file.
+Scene load_scene(const std::string& path);
+
+/// Builds the coupled step of a scene: the fluid solver with its walls, the flow at t = 0, one
+/// batch per cell type with its cells, the point sets. Builds each type's operators (seconds to
+/// minutes for large types).
+sim::ImmersedBoundary build(const Scene& scene);
+
+/// A multi-line summary with units: the box, grid, flow, step, kernel, types, cells, point sets.
+std::string describe(const Scene& scene);
+
+}  // namespace rbfib::scene

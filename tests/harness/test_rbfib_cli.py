@@ -1,0 +1,104 @@
+"""Tests of the rbfib command on the example scenes: they check and run; mutants of them (missing
+and unknown keys, wrong types and units, negative, zero, NaN and huge values) either pass the
+check or exit with status 2 and one line naming the field, never a crash or a hang."""
+import glob
+import os
+import random
+import re
+import subprocess
+import tempfile
+import unittest
+
+ROOT = os.environ.get("RBFIB_ROOT", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+BUILD = os.environ.get("RBFIB_BUILD", os.path.join(ROOT, "build"))
+RBFIB = os.path.join(BUILD, "bin", "rbfib")
+SCENES = sorted(glob.glob(os.path.join(ROOT, "scenes", "*.yaml")))
+MUTANTS = int(os.environ.get("RBFIB_MUTANTS", "500"))
+
+
+def rbfib(*args, timeout=60):
+    return subprocess.run([RBFIB, *args], capture_output=True, text=True, timeout=timeout)
+
+
+def mutate(text, rng):
+    """One random mutation of a scene's text (line-based, so it stays close to valid YAML)."""
+    lines = text.split("\n")
+    body = [i for i, l in enumerate(lines) if l.strip() and not l.strip().startswith("#")]
+    i = rng.choice(body)
+    line = lines[i]
+    kind = rng.randrange(7)
+    if kind == 0:  # a missing key
+        del lines[i]
+    elif kind == 1:  # an unknown key beside it
+        indent = len(line) - len(line.lstrip(" -"))
+        lines.insert(i, " " * indent + "colour: red")
+    elif ":" in line and line.split(":", 1)[1].strip():
+        key, value = line.split(":", 1)
+        junk = ["-1 um", "0", "nan cP", "1e300 s", "1e-300 um", "12 parsec", "[1, 2]", "{a: 1}", "''", "true",
+                "-5", "1e9", "3 dyn/cm", "0.5 us"]
+        if kind == 2:  # a number in place of a quantity or the other way round
+            value = " " + re.sub(r"[a-zA-Z/^]+.*$", "", value.strip()) if re.search(r"\d", value) else " 42"
+        elif kind == 3:  # a wrong unit
+            value = re.sub(r"(\d)\s*[a-zA-Z][a-zA-Z/^0-9 -]*", r"\1 erg", value)
+        elif kind == 4:  # a value scaled far out of range
+            value = re.sub(r"(-?\d+(\.\d*)?(e-?\d+)?)", lambda m: repr(float(m.group(1)) * rng.choice([-1, 0, 1e6, 1e-6])), value, count=1)
+        else:
+            value = " " + rng.choice(junk)
+        lines[i] = key + ":" + value
+    else:
+        del lines[i]
+    return "\n".join(lines)
+
+
+class ExampleScenes(unittest.TestCase):
+    def test_every_example_checks(self):
+        self.assertTrue(SCENES, "no example scenes in scenes/")
+        for path in SCENES:
+            r = rbfib("check", path)
+            self.assertEqual(r.returncode, 0, f"{path}: {r.stderr}")
+            self.assertIn("stopping condition (eq. 5.4)", r.stdout)
+
+    def test_a_short_run_writes_its_diagnostics(self):
+        with tempfile.TemporaryDirectory() as out:
+            r = rbfib("run", os.path.join(ROOT, "scenes", "relaxing_sphere.yaml"), "--out", out, "--until", "4 us", timeout=300)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            with open(os.path.join(out, "diagnostics.csv")) as f:
+                rows = f.read().strip().split("\n")
+            self.assertEqual(len(rows), 1 + 10)  # header and 10 steps of 0.4 us
+            self.assertTrue(rows[0].startswith("step,t_s,dt_s"))
+            self.assertTrue(os.path.exists(os.path.join(out, "scene.yaml")))
+
+    def test_bad_command_lines_exit_2(self):
+        self.assertEqual(rbfib("run", SCENES[0]).returncode, 2)  # --out missing
+        r = rbfib("run", SCENES[0], "--out", tempfile.gettempdir(), "--until", "4 um")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("--until", r.stderr)
+        self.assertEqual(rbfib("check", "/nonexistent.yaml").returncode, 2)
+
+
+class Mutants(unittest.TestCase):
+    def test_mutants_pass_or_name_their_field(self):
+        rng = random.Random(20261130)
+        texts = []
+        for p in SCENES:
+            with open(p) as f:
+                texts.append(f.read())
+        counts = {0: 0, 2: 0}
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "mutant.yaml")
+            for k in range(MUTANTS):
+                text = mutate(rng.choice(texts), rng)
+                with open(path, "w") as f:
+                    f.write(text)
+                r = rbfib("check", path)
+                self.assertIn(r.returncode, (0, 2), f"mutant {k} exited {r.returncode}:\n{text}\n{r.stderr}")
+                counts[r.returncode] += 1
+                if r.returncode == 2:
+                    lines = r.stderr.strip().split("\n")
+                    self.assertEqual(len(lines), 1, f"mutant {k}: more than one line:\n{r.stderr}")
+                    self.assertRegex(lines[0], r"^rbfib: \S.* = ", f"mutant {k}: no field named:\n{text}")
+        print(f"{MUTANTS} mutants: {counts[0]} valid, {counts[2]} rejected with a named field")
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,201 @@
+// Scenes: the example files parse to the seed's values in CGS, a scene builds the same coupled
+// step as the same setup written in C++ (bit for bit over a few steps), and every kind of bad
+// input is an InputError naming the field (its path in the file) and the value.
+#include "../common/errors.hpp"
+#include "rbfib/cells/presets.hpp"
+#include "rbfib/core/error.hpp"
+#include "rbfib/core/units.hpp"
+#include "rbfib/scene/scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace rbfib::scene {
+namespace {
+
+const char* sphere_scene = R"(
+name: relaxing_sphere
+domain:
+  size: [16 um, 16 um, 16 um]
+  periodic: [x, y, z]
+fluid:
+  density: 1 g/cm^3
+  viscosity: 0.1 cP
+grid:
+  h: 1 um
+time:
+  integrator: backward_forward_euler
+  dt: 0.4 us
+  end: 40 us
+ib:
+  kernel: bspline3
+cell_types:
+  - name: sphere
+    preset: skalak_sphere
+    radius: 3 um
+    data_sites: 144
+    sample_sites: 400
+cells:
+  - type: sphere
+    center: [8 um, 8 um, 8 um]
+    stretch: [1, 0.909090909, 1.1]
+)";
+
+const char* channel_scene = R"(
+domain:
+  size: [16 um, 12 um, 16 um]
+  periodic: [x, z]
+  walls:
+    y: {lower: [0 mm/s, 0 mm/s, 0 mm/s], upper: [12 mm/s, 0 mm/s, 0 mm/s]}
+  initial_flow: shear
+fluid: {density: 1 g/cm^3, viscosity: 0.1 cP}
+grid: {cells: [16, 12, 16]}
+time:
+  integrator: peskin_two_stage
+  coupling: midpoint
+  dt: 100 ns
+  end: 1 us
+  adaptive: {dt_min: 25 ns, max_level: 3}
+ib: {kernel: roma3, body_force: [8e3 dyn/cm^3, 0 dyn/cm^3, 0 dyn/cm^3]}
+cell_types:
+  - name: plt
+    preset: platelet
+    data_sites: 144
+    sample_sites: 144
+    model:
+      elastic: [{law: neo_hookean, E: 0.1 dyn/cm, G: 1 dyn/cm}]
+      kappa: 2e-11 erg
+      H0: reference
+cells:
+  - {type: plt, center: [4 um, 3 um, 4 um], axis: [1, 0, 0], angle: 90 deg, force: [0 dyn, 1e-9 dyn, 0 dyn]}
+tethered_points:
+  - name: endothelium
+    plane: {y: 1 um, points: [32, 30]}
+    k: 2.5 dyn/cm
+    eta: 2.5e-7 dyn s/cm
+output: {diagnostics_every: 5}
+)";
+
+TEST(Scene, TheValuesArriveInCgs) {
+  const Scene s = parse_scene(channel_scene, "channel");
+  EXPECT_EQ(s.name, "channel");
+  EXPECT_NEAR(s.grid.length[1], 12 * units::um, 1e-18);
+  EXPECT_EQ(s.grid.cells[1], 12);
+  EXPECT_TRUE(s.grid.periodic(0));
+  EXPECT_FALSE(s.grid.periodic(1));
+  EXPECT_NEAR(s.walls[1][1][0], 1.2, 1e-15);  // 12 mm/s
+  EXPECT_TRUE(s.initial_shear);
+  EXPECT_NEAR(s.fluid.viscosity, 1e-3, 1e-18);
+  EXPECT_EQ(s.fluid_options.integrator, TimeIntegrator::peskin_two_stage);
+  EXPECT_EQ(s.ib.coupling, sim::Coupling::midpoint);
+  EXPECT_NEAR(s.fluid_options.dt, 1e-7, 1e-22);
+  EXPECT_TRUE(s.ib.adaptive.enabled);
+  EXPECT_EQ(s.ib.adaptive.grow_after, 16);
+  EXPECT_EQ(s.ib.kernel, "roma3");
+  EXPECT_NEAR(s.ib.body_force[0], 8e3, 1e-9);
+  ASSERT_EQ(s.types.size(), 1u);
+  EXPECT_TRUE(s.types[0].spec.model.H0_reference);
+  EXPECT_NEAR(s.types[0].spec.model.kappa, 2e-11, 1e-25);
+  ASSERT_EQ(s.cells.size(), 1u);
+  EXPECT_NEAR(s.cells[0].placement.angle, 1.5707963267948966, 1e-15);
+  EXPECT_NEAR(s.cells[0].force[1], 1e-9, 1e-24);
+  ASSERT_EQ(s.point_sets.size(), 1u);
+  EXPECT_EQ(s.point_sets[0].X.size(), 3u * 32 * 30);
+  EXPECT_EQ(s.diagnostics_every, 5);
+  // It builds and steps.
+  sim::ImmersedBoundary ib = build(s);
+  EXPECT_EQ(ib.batches(), 1);
+  for (int n = 0; n < 3; ++n) ib.step();
+  EXPECT_GT(ib.time(), 0.0);
+}
+
+TEST(Scene, ASceneBuildsTheSameStepAsTheSameSetupInCode) {
+  sim::ImmersedBoundary a = build(parse_scene(sphere_scene, "sphere"));
+  NavierStokesOptions o;
+  o.dt = 0.4 * units::us;
+  const MacGrid g = make_mac_grid(3, {16, 16, 16}, {16 * units::um, 16 * units::um, 16 * units::um},
+                                  {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
+  sim::ImmersedBoundary b(g, FluidParameters{1.0, 0.1 * units::cP}, o, {}, sim::IbOptions{});
+  cells::CellTypeSpec spec = cells::skalak_sphere_spec(3 * units::um, 144, 400);
+  spec.name = "sphere";
+  cells::Placement p;
+  p.center = {8 * units::um, 8 * units::um, 8 * units::um};
+  p.stretch = {1, 0.909090909, 1.1};
+  b.add(cells::Batch(std::make_shared<const cells::CellType>(spec), {p}));
+  for (int n = 0; n < 5; ++n) {
+    a.step();
+    b.step();
+  }
+  const std::vector<double> xa = a.batch(0).positions_host(), xb = b.batch(0).positions_host();
+  ASSERT_EQ(xa.size(), xb.size());
+  for (std::size_t k = 0; k < xa.size(); ++k) ASSERT_EQ(xa[k], xb[k]) << k;
+}
+
+/// The field named by the InputError of parsing `yaml` ("" if none).
+std::string field_of(const std::string& yaml) {
+  try {
+    build(parse_scene(yaml, "mutant"));
+  } catch (const InputError& e) {
+    return e.field();
+  }
+  return "";
+}
+
+std::string replaced(std::string s, const std::string& from, const std::string& to) {
+  const auto at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) s.replace(at, from.size(), to);
+  return s;
+}
+
+TEST(Scene, EveryBadInputNamesItsField) {
+  const std::string ok = channel_scene;
+  ASSERT_EQ(field_of(ok), "");
+  struct Case {
+    const char* from;
+    const char* to;
+    const char* field;
+  };
+  const Case cases[] = {
+      {"viscosity: 0.1 cP", "viscosity: 0.1 cm", "fluid.viscosity"},          // wrong dimension
+      {"viscosity: 0.1 cP", "viscosity: -0.1 cP", "fluid.viscosity"},         // negative
+      {"viscosity: 0.1 cP", "viscosity: nan cP", "fluid.viscosity"},          // NaN
+      {"viscosity: 0.1 cP", "viscosity: 0.1 parsec", "fluid.viscosity"},      // unknown unit
+      {"viscosity: 0.1 cP", "viscosity: 0.1 cP, colour: red", "fluid.colour"},  // unknown key
+      {"density: 1 g/cm^3, ", "", "fluid.density"},                           // missing key
+      {"dt: 100 ns", "dt: 0 ns", "time.dt"},                                  // zero
+      {"dt: 100 ns", "dt: 1e300 s", "time.end"},                              // huge: end shorter than a step
+      {"dt: 100 ns", "dt: 60 ns", "time.dt"},                                 // not 2^k dt_min
+      {"integrator: peskin_two_stage", "integrator: rk4", "time.integrator"},
+      {"integrator: peskin_two_stage", "integrator: backward_forward_euler", "time.coupling"},
+      {"kernel: roma3", "kernel: gauss", "ib.kernel"},
+      {"cells: [16, 12, 16]", "cells: [16, 3, 16]", "grid.cells"},
+      {"grid: {cells: [16, 12, 16]}", "grid: {h: 0.7 um}", "grid.h"},        // does not divide
+      {"periodic: [x, z]", "periodic: [x, w]", "domain.periodic[1]"},
+      {"upper: [12 mm/s, 0 mm/s, 0 mm/s]", "upper: [12 mm/s, 1 mm/s, 0 mm/s]", "domain.walls.y.upper[1]"},
+      {"upper: [12 mm/s, 0 mm/s, 0 mm/s]", "upper: [12 mm/s, 0 mm/s]", "domain.walls.y.upper"},
+      {"preset: platelet", "preset: neutrophil", "cell_types[0].preset"},
+      {"data_sites: 144\n    sample_sites: 144", "data_sites: 3\n    sample_sites: 144", "cell_types[0].data_sites"},
+      {"{type: plt,", "{type: rbc,", "cells[0].type"},
+      {"center: [4 um, 3 um, 4 um]", "center: [4 um, 13 um, 4 um]", "cells[0].center[1]"},
+      {"center: [4 um, 3 um, 4 um]", "center: [4 um, 0.2 um, 4 um]", "cells (type 'plt', cell 0 of that type)"},  // through a wall
+      {"axis: [1, 0, 0]", "axis: [0, 0, 0]", "cells[0].axis"},
+      {"angle: 90 deg", "angle: 90 um", "cells[0].angle"},
+      {"force: [0 dyn, 1e-9 dyn, 0 dyn]", "force: [0 dyn, 1e-9 dyn/cm, 0 dyn]", "cells[0].force[1]"},
+      {"k: 2.5 dyn/cm", "k: -2.5 dyn/cm", "tethered_points[0].k"},
+      {"plane: {y: 1 um, points: [32, 30]}", "plane: {y: 20 um, points: [32, 30]}", "tethered_points[0].plane.y"},
+      {"output: {diagnostics_every: 5}", "output: {diagnostics_every: 0}", "output.diagnostics_every"},
+      {"output: {diagnostics_every: 5}", "output: {snapshots: 1 us}", "output.snapshots"},
+  };
+  for (const Case& c : cases) EXPECT_EQ(field_of(replaced(ok, c.from, c.to)), c.field) << c.from << " -> " << c.to;
+  // A kernel wider than the grid allows: B3 spans 4 cells, a 4-cell axis needs 3.
+  EXPECT_EQ(field_of(replaced(replaced(ok, "cells: [16, 12, 16]", "cells: [16, 4, 16]"), "kernel: roma3", "kernel: bspline3")), "ib.kernel");
+  EXPECT_EQ(field_of("domain: [1, 2"), "mutant");  // not YAML
+  EXPECT_EQ(field_of(""), "mutant");               // empty
+  const std::string m = testing::message_of<InputError>([&] { parse_scene(replaced(ok, "0.1 cP", "0.1 cm"), "m"); });
+  EXPECT_NE(m.find("fluid.viscosity = '0.1 cm': has the dimension length; expected dynamic viscosity"), std::string::npos) << m;
+}
+
+}  // namespace
+}  // namespace rbfib::scene
