@@ -3,18 +3,22 @@
 //   rbfib check SCENE.yaml                  validate; print the resolved scene with units, the
 //                                           dimensionless groups, eq. 5.4's bound, memory
 //   rbfib run SCENE.yaml --out DIR [--until T]
-//                                           run it; progress on stdout; DIR/diagnostics.csv
+//                                           run it; progress on stdout; DIR/diagnostics.csv and
+//                                           DIR/checkpoint.h5 (at the scene's interval and the end)
+//   rbfib restart DIR [--until T]           continue from DIR/checkpoint.h5, bit for bit
 //
 // Exit status: 0 done, 2 bad input (one line naming the field and the value), 3 a numerical
 // failure (the run stops, the message names the step, time and cause; what was written stays).
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/quantity.hpp"
 #include "rbfib/core/units.hpp"
+#include "rbfib/scene/checkpoint.hpp"
 #include "rbfib/scene/scene.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -67,24 +71,37 @@ void print_check(const scene::Scene& s) {
             << cells_bytes / 1048576 << " MiB\n";
 }
 
-int run(const scene::Scene& s, const std::string& out, double until) {
-  std::filesystem::create_directories(out);
-  {
-    std::ofstream copy(out + "/scene.yaml");
-    copy << s.source;
-  }
-  const double t_end = until > 0 ? std::min(until, s.t_end) : s.t_end;
-  std::cout << scene::describe(s) << "building the cell types and the solver ..." << std::endl;
-  sim::ImmersedBoundary ib = scene::build(s);
-  std::ofstream csv(out + "/diagnostics.csv");
-  csv << "step,t_s,dt_s,max_velocity_cm_s,kinetic_energy_erg,elastic_energy_erg,max_force_density_dyn_cm3,dt_bound_s,"
-         "seconds_interpolation,seconds_forces,seconds_spreading,seconds_fluid";
+/// The diagnostics table's header for the step's batches.
+std::string csv_header(const sim::ImmersedBoundary& ib) {
+  std::string h = "step,t_s,dt_s,max_velocity_cm_s,kinetic_energy_erg,elastic_energy_erg,max_force_density_dyn_cm3,dt_bound_s,"
+                  "seconds_interpolation,seconds_forces,seconds_spreading,seconds_fluid";
   for (index_t b = 0; b < ib.batches(); ++b)
-    for (index_t c = 0; c < ib.batch(b).size(); ++c) csv << ",volume_" << ib.batch(b).type().name() << "_" << c << "_um3";
-  csv << "\n";
+    for (index_t c = 0; c < ib.batch(b).size(); ++c) h += ",volume_" + ib.batch(b).type().name() + "_" + std::to_string(c) + "_um3";
+  return h;
+}
+
+/// Keeps the header and the rows of steps <= last (rows written after the checkpoint a restart
+/// continues from would otherwise appear twice).
+void trim_csv(const std::string& path, long last) {
+  std::ifstream in(path);
+  std::string line, kept;
+  bool header = true;
+  while (std::getline(in, line)) {
+    if (header || std::atol(line.c_str()) <= last) kept += line + "\n";
+    header = false;
+  }
+  in.close();
+  std::ofstream(path) << kept;
+}
+
+/// Steps the scene to t_end, writing diagnostics and checkpoints into out.
+int advance(const scene::Scene& s, sim::ImmersedBoundary& ib, const std::string& out, double t_end) {
+  const std::string checkpoint = out + "/checkpoint.h5";
+  std::ofstream csv(out + "/diagnostics.csv", std::ios::app);
   const bool terminal = isatty(STDOUT_FILENO);
   const auto start = std::chrono::steady_clock::now();
   auto last_print = start;
+  double next_checkpoint = s.checkpoint_every > 0 ? (std::floor(ib.time() / s.checkpoint_every + 1e-9) + 1) * s.checkpoint_every : 0;
   long steps = 0;
   while (ib.time() < t_end * (1 - 1e-12)) {
     sim::IbStepReport r;
@@ -92,17 +109,22 @@ int run(const scene::Scene& s, const std::string& out, double until) {
       r = ib.step();
     } catch (const NumericalError& e) {
       csv.flush();
-      std::cout << (terminal ? "\n" : "") << "rbfib: stopped: " << e.what() << std::endl;
+      std::cout << (terminal ? "\n" : "") << "rbfib: stopped: " << e.what() << "; the last checkpoint is " << checkpoint << std::endl;
       return 3;
     }
     ++steps;
-    if (steps % s.diagnostics_every == 0) {
+    if (ib.step_count() % s.diagnostics_every == 0) {
       csv << ib.step_count() << "," << ib.time() << "," << r.dt << "," << r.max_velocity << "," << r.kinetic_energy << ","
           << r.elastic_energy << "," << r.max_force_density << "," << r.dt_bound << "," << r.seconds_interpolation << ","
           << r.seconds_forces << "," << r.seconds_spreading << "," << r.seconds_fluid;
       for (index_t b = 0; b < ib.batches(); ++b)
         for (double v : ib.diagnostics(b).volume) csv << "," << v / (units::um * units::um * units::um);
       csv << "\n";
+    }
+    if (s.checkpoint_every > 0 && ib.time() >= next_checkpoint * (1 - 1e-12)) {
+      csv.flush();
+      scene::write_checkpoint(checkpoint, s.source, ib);
+      next_checkpoint += s.checkpoint_every;
     }
     const auto now = std::chrono::steady_clock::now();
     const double since = std::chrono::duration<double>(now - last_print).count();
@@ -118,10 +140,31 @@ int run(const scene::Scene& s, const std::string& out, double until) {
     }
   }
   csv.flush();
+  scene::write_checkpoint(checkpoint, s.source, ib);
   std::cout << (terminal ? "\n" : "") << "done: " << steps << " steps to t = " << ib.time() / units::us << " us in "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s; " << out
-            << "/diagnostics.csv" << std::endl;
+            << "/diagnostics.csv, " << checkpoint << std::endl;
   return 0;
+}
+
+int run(const scene::Scene& s, const std::string& out, double until) {
+  std::filesystem::create_directories(out);
+  std::ofstream(out + "/scene.yaml") << s.source;
+  std::cout << scene::describe(s) << "building the cell types and the solver ..." << std::endl;
+  sim::ImmersedBoundary ib = scene::build(s);
+  std::ofstream(out + "/diagnostics.csv") << csv_header(ib) << "\n";
+  return advance(s, ib, out, until > 0 ? std::min(until, s.t_end) : s.t_end);
+}
+
+int restart(const std::string& out, double until) {
+  const scene::Checkpoint k = scene::read_checkpoint(out + "/checkpoint.h5");
+  const scene::Scene s = scene::parse_scene(k.scene_yaml, out + "/checkpoint.h5");
+  std::cout << scene::describe(s) << "restarting at step " << k.state.steps << ", t = " << k.state.fluid.t / units::us
+            << " us; building the cell types and the solver ..." << std::endl;
+  sim::ImmersedBoundary ib = scene::build(s);
+  ib.restore(k.state);
+  trim_csv(out + "/diagnostics.csv", k.state.steps);
+  return advance(s, ib, out, until > 0 ? until : s.t_end);
 }
 
 }  // namespace
@@ -136,19 +179,23 @@ int main(int argc, char** argv) {
   runc->add_option("scene", scene_path, "the scene file (YAML)")->required();
   runc->add_option("--out", out, "the output directory")->required();
   runc->add_option("--until", until_text, "stop at this simulated time (with its unit, e.g. '10 us'); default: the scene's end");
+  CLI::App* restartc = app.add_subcommand("restart", "continue a run from the newest checkpoint in its output directory");
+  restartc->add_option("out", out, "the run's output directory")->required();
+  restartc->add_option("--until", until_text, "stop at this simulated time (with its unit); default: the scene's end");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
+    const double until = until_text.empty() ? 0.0 : parse_quantity(until_text, "s", "--until");
+    if (!until_text.empty() && !(until > 0)) throw InputError("--until", until_text, "must be positive");
+    if (*restartc) return restart(out, until);
     const scene::Scene s = scene::load_scene(scene_path);
     if (*check) {
       print_check(s);
       return 0;
     }
-    const double until = until_text.empty() ? 0.0 : parse_quantity(until_text, "s", "--until");
-    if (!until_text.empty() && !(until > 0)) throw InputError("--until", until_text, "must be positive");
     return run(s, out, until);
   } catch (const InputError& e) {
     std::cerr << "rbfib: " << e.what() << std::endl;

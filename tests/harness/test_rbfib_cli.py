@@ -7,6 +7,7 @@ import random
 import re
 import subprocess
 import tempfile
+import time
 import unittest
 
 ROOT = os.environ.get("RBFIB_ROOT", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
@@ -74,6 +75,47 @@ class ExampleScenes(unittest.TestCase):
         self.assertEqual(r.returncode, 2)
         self.assertIn("--until", r.stderr)
         self.assertEqual(rbfib("check", "/nonexistent.yaml").returncode, 2)
+
+
+class Restart(unittest.TestCase):
+    def physics(self, out):
+        """The diagnostics rows without their timing columns."""
+        with open(os.path.join(out, "diagnostics.csv")) as f:
+            return [",".join(l.split(",")[:8]) for l in f.read().strip().split("\n")]
+
+    def test_restart_continues_bit_for_bit(self):
+        scene = os.path.join(ROOT, "scenes", "relaxing_sphere.yaml")
+        with tempfile.TemporaryDirectory() as a, tempfile.TemporaryDirectory() as b:
+            self.assertEqual(rbfib("run", scene, "--out", a, "--until", "2 us", timeout=300).returncode, 0)
+            r = rbfib("restart", a, "--until", "4 us", timeout=300)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            self.assertEqual(rbfib("run", scene, "--out", b, "--until", "4 us", timeout=300).returncode, 0)
+            self.assertEqual(self.physics(a), self.physics(b))
+            self.assertEqual(len(self.physics(a)), 1 + 10)
+
+    def test_a_kill_at_any_moment_leaves_a_valid_checkpoint(self):
+        # A checkpoint after every step; SIGKILL at random moments (20 tries): restart must
+        # always find a whole checkpoint and continue.
+        with open(os.path.join(ROOT, "scenes", "relaxing_sphere.yaml")) as f:
+            text = f.read().replace("end: 40 us", "end: 400 us") + "\noutput: {checkpoint_every: 0.4 us}\n"
+        rng = random.Random(7)
+        with tempfile.TemporaryDirectory() as d:
+            scene = os.path.join(d, "scene.yaml")
+            with open(scene, "w") as f:
+                f.write(text)
+            out = os.path.join(d, "out")
+            first = rbfib("run", scene, "--out", out, "--until", "0.8 us", timeout=300)
+            self.assertEqual(first.returncode, 0, first.stderr)
+            for k in range(20):
+                p = subprocess.Popen([RBFIB, "restart", out, "--until", "400 us"], stdout=subprocess.DEVNULL,
+                                     stderr=subprocess.PIPE, text=True)
+                time.sleep(rng.uniform(0.3, 1.5))
+                p.kill()
+                p.wait()
+                self.assertNotIn("Error", p.stderr.read())
+            r = rbfib("restart", out, "--until", "1 us", timeout=300)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            self.assertIn("restarting at step", r.stdout)
 
 
 class Mutants(unittest.TestCase):

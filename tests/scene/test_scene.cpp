@@ -5,10 +5,14 @@
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
+#include "rbfib/scene/checkpoint.hpp"
 #include "rbfib/scene/scene.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace rbfib::scene {
@@ -195,6 +199,52 @@ TEST(Scene, EveryBadInputNamesItsField) {
   EXPECT_EQ(field_of(""), "mutant");               // empty
   const std::string m = testing::message_of<InputError>([&] { parse_scene(replaced(ok, "0.1 cP", "0.1 cm"), "m"); });
   EXPECT_NE(m.find("fluid.viscosity = '0.1 cm': has the dimension length; expected dynamic viscosity"), std::string::npos) << m;
+}
+
+void expect_same(const dvec& a, const dvec& b, const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  const host_vector<double> x = a, y = b;
+  for (std::size_t k = 0; k < x.size(); ++k) ASSERT_EQ(x[k], y[k]) << what << " entry " << k;
+}
+
+TEST(Checkpoint, RestartContinuesBitForBit) {
+  // The channel scene carries everything a checkpoint must hold: walls, the midpoint coupling
+  // with Peskin's scheme, the adaptive step, a cell with a constant force, tethered points.
+  // 4 steps, a checkpoint, 4 more steps equal 4 steps, a restart from the file, 4 more steps.
+  const std::string dir = ::testing::TempDir() + "rbfib_checkpoint_test";
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/checkpoint.h5";
+  sim::ImmersedBoundary a = build(parse_scene(channel_scene, "channel"));
+  for (int n = 0; n < 4; ++n) a.step();
+  write_checkpoint(path, channel_scene, a);
+  EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+  for (int n = 0; n < 4; ++n) a.step();
+
+  const Checkpoint k = read_checkpoint(path);
+  EXPECT_EQ(k.scene_yaml, channel_scene);
+  sim::ImmersedBoundary b = build(parse_scene(k.scene_yaml, "channel"));
+  b.restore(k.state);
+  EXPECT_EQ(b.step_count(), 4);
+  for (int n = 0; n < 4; ++n) b.step();
+  EXPECT_EQ(a.time(), b.time());
+  EXPECT_EQ(a.step_count(), b.step_count());
+  EXPECT_EQ(a.dt(), b.dt());
+  for (int c = 0; c < 3; ++c) expect_same(a.fluid_state().u[c], b.fluid_state().u[c], "u" + std::to_string(c));
+  expect_same(a.fluid_state().p, b.fluid_state().p, "p");
+  expect_same(a.batch(0).state().storage(), b.batch(0).state().storage(), "cells");
+  expect_same(a.points(0).X, b.points(0).X, "tethered points");
+
+  // A damaged file (truncated) and a file of another setup are named errors.
+  {
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream out(dir + "/truncated.h5", std::ios::binary);
+    out.write(bytes.data(), std::streamsize(bytes.size() / 2));
+  }
+  EXPECT_NE(testing::message_of<InputError>([&] { read_checkpoint(dir + "/truncated.h5"); }).find("checkpoint"), std::string::npos);
+  sim::ImmersedBoundary other = build(parse_scene(sphere_scene, "sphere"));
+  EXPECT_NE(testing::message_of<InputError>([&] { other.restore(k.state); }).find("checkpoint"), std::string::npos);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -58,6 +58,44 @@ ImmersedBoundary::ImmersedBoundary(const MacGrid& grid, FluidParameters fluid, N
   }
 }
 
+ImmersedBoundary::Carried ImmersedBoundary::carried() const {
+  Carried c;
+  c.fluid = state_;
+  for (const Entry& e : batches_) c.batches.push_back(e.batch.state().storage());
+  for (const PointEntry& q : points_) c.points.push_back(q.points.X);
+  c.steps = steps_;
+  c.dt = ns_.options().dt;
+  c.level = level_;
+  c.allowing = allowing_;
+  return c;
+}
+
+void ImmersedBoundary::restore(const Carried& c) {
+  require(c.batches.size() == batches_.size(), "checkpoint: cell batches", c.batches.size(),
+          "must equal this setup's " + to_text(batches_.size()));
+  require(c.points.size() == points_.size(), "checkpoint: point sets", c.points.size(),
+          "must equal this setup's " + to_text(points_.size()));
+  for (int a = 0; a < 3; ++a)
+    require(c.fluid.u[a].size() == state_.u[a].size(), "checkpoint: velocity component " + to_text(a) + " size",
+            c.fluid.u[a].size(), "must equal this grid's " + to_text(state_.u[a].size()));
+  require(c.fluid.p.size() == state_.p.size(), "checkpoint: pressure size", c.fluid.p.size(),
+          "must equal this grid's " + to_text(state_.p.size()));
+  for (std::size_t b = 0; b < batches_.size(); ++b)
+    require(c.batches[b].size() == batches_[b].batch.state().storage().size(), "checkpoint: batch " + to_text(b) + " size",
+            c.batches[b].size(), "must equal this setup's " + to_text(batches_[b].batch.state().storage().size()));
+  for (std::size_t p = 0; p < points_.size(); ++p)
+    require(c.points[p].size() == points_[p].points.X.size(), "checkpoint: point set " + to_text(p) + " size",
+            c.points[p].size(), "must equal this setup's " + to_text(points_[p].points.X.size()));
+  require(std::isfinite(c.dt) && c.dt > 0, "checkpoint: dt", c.dt, "must be positive");
+  state_ = c.fluid;
+  for (std::size_t b = 0; b < batches_.size(); ++b) batches_[b].batch.state().storage() = c.batches[b];
+  for (std::size_t p = 0; p < points_.size(); ++p) points_[p].points.X = c.points[p];
+  steps_ = c.steps;
+  level_ = c.level;
+  allowing_ = c.allowing;
+  ns_.set_dt(c.dt);
+}
+
 void ImmersedBoundary::set_level(int level) {
   level_ = level;
   allowing_ = 0;

@@ -119,6 +119,23 @@ class ImmersedBoundary {
   double time() const { return state_.t; }
   long step_count() const { return steps_; }
 
+  /// Everything a step carries over to the next, for checkpoints: the fluid state, each batch's
+  /// data-site state (X and U), each point set's positions, the step count, the step size and
+  /// the adaptive step's state. The rest (operators, factorizations, workspaces) is rebuilt from
+  /// the setup, so restoring this into an ImmersedBoundary built the same way continues the run
+  /// bit for bit.
+  struct Carried {
+    FluidState fluid;
+    std::vector<dvec> batches;  ///< each batch's state storage (n_d x 6N, column-major)
+    std::vector<dvec> points;   ///< each point set's positions
+    long steps = 0;
+    double dt = 0;
+    int level = 0, allowing = 0;
+  };
+  Carried carried() const;
+  /// Restores a carried state; throws InputError naming what does not match this setup.
+  void restore(const Carried& c);
+
   /// One step (a)-(g). Throws NumericalError (state unchanged) as described above; with the
   /// adaptive step, eq. 5.4 stops the run only when even dt_min violates it.
   IbStepReport step();
