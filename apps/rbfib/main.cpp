@@ -14,6 +14,7 @@
 #include "rbfib/core/units.hpp"
 #include "rbfib/scene/checkpoint.hpp"
 #include "rbfib/scene/scene.hpp"
+#include "rbfib/scene/snapshot.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -24,6 +25,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <unistd.h>
 
 using namespace rbfib;
@@ -95,8 +97,10 @@ void trim_csv(const std::string& path, long last) {
 }
 
 /// Steps the scene to t_end, writing diagnostics and checkpoints into out.
-int advance(const scene::Scene& s, sim::ImmersedBoundary& ib, const std::string& out, double t_end) {
+int advance(const scene::Scene& s, sim::ImmersedBoundary& ib, const std::string& out, double t_end,
+            scene::SnapshotWriter* snapshots) {
   const std::string checkpoint = out + "/checkpoint.h5";
+  double next_snapshot = s.snapshot_every > 0 ? (std::floor(ib.time() / s.snapshot_every + 1e-9) + 1) * s.snapshot_every : 0;
   std::ofstream csv(out + "/diagnostics.csv", std::ios::app);
   const bool terminal = isatty(STDOUT_FILENO);
   const auto start = std::chrono::steady_clock::now();
@@ -120,6 +124,10 @@ int advance(const scene::Scene& s, sim::ImmersedBoundary& ib, const std::string&
       for (index_t b = 0; b < ib.batches(); ++b)
         for (double v : ib.diagnostics(b).volume) csv << "," << v / (units::um * units::um * units::um);
       csv << "\n";
+    }
+    if (snapshots && ib.time() >= next_snapshot * (1 - 1e-12)) {
+      snapshots->write(ib);
+      next_snapshot += s.snapshot_every;
     }
     if (s.checkpoint_every > 0 && ib.time() >= next_checkpoint * (1 - 1e-12)) {
       csv.flush();
@@ -153,7 +161,12 @@ int run(const scene::Scene& s, const std::string& out, double until) {
   std::cout << scene::describe(s) << "building the cell types and the solver ..." << std::endl;
   sim::ImmersedBoundary ib = scene::build(s);
   std::ofstream(out + "/diagnostics.csv") << csv_header(ib) << "\n";
-  return advance(s, ib, out, until > 0 ? std::min(until, s.t_end) : s.t_end);
+  std::unique_ptr<scene::SnapshotWriter> snapshots;
+  if (s.snapshot_every > 0) {
+    snapshots = std::make_unique<scene::SnapshotWriter>(out, ib);
+    snapshots->write(ib);  // t = 0
+  }
+  return advance(s, ib, out, until > 0 ? std::min(until, s.t_end) : s.t_end, snapshots.get());
 }
 
 int restart(const std::string& out, double until) {
@@ -164,7 +177,12 @@ int restart(const std::string& out, double until) {
   sim::ImmersedBoundary ib = scene::build(s);
   ib.restore(k.state);
   trim_csv(out + "/diagnostics.csv", k.state.steps);
-  return advance(s, ib, out, until > 0 ? until : s.t_end);
+  std::unique_ptr<scene::SnapshotWriter> snapshots;
+  if (s.snapshot_every > 0) {
+    snapshots = std::make_unique<scene::SnapshotWriter>(out, ib);
+    snapshots->resume(ib.time());
+  }
+  return advance(s, ib, out, until > 0 ? until : s.t_end, snapshots.get());
 }
 
 }  // namespace

@@ -1,12 +1,9 @@
 #include "rbfib/scene/checkpoint.hpp"
 
 #include "rbfib/core/error.hpp"
+#include "rbfib/scene/hdf5.hpp"
 
 #include <hdf5.h>
-
-#include <cstdio>
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <vector>
@@ -17,57 +14,7 @@ namespace {
 
 constexpr const char* format = "rbfib checkpoint 1";
 
-/// An HDF5 identifier closed on scope exit.
-struct Id {
-  hid_t id;
-  herr_t (*close)(hid_t);
-  ~Id() {
-    if (id >= 0) close(id);
-  }
-  operator hid_t() const { return id; }
-};
-
-void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("HDF5: " + what + " failed");
-}
-
-void write_array(hid_t where, const char* name, const dvec& v) {
-  const host_vector<double> h = v;
-  const hsize_t n = h.size();
-  Id space{H5Screate_simple(1, &n, nullptr), H5Sclose};
-  Id set{H5Dcreate2(where, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose};
-  if (set < 0) throw std::runtime_error(std::string("HDF5: cannot create ") + name);
-  if (n > 0) check(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, h.data()), std::string("writing ") + name);
-}
-
-template <class T>
-void write_attribute(hid_t where, const char* name, hid_t type, const T& value) {
-  Id space{H5Screate(H5S_SCALAR), H5Sclose};
-  Id a{H5Acreate2(where, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
-  check(H5Awrite(a, type, &value), std::string("writing attribute ") + name);
-}
-
-void write_string_attribute(hid_t where, const char* name, const std::string& text) {
-  Id type{H5Tcopy(H5T_C_S1), H5Tclose};
-  H5Tset_size(type, text.size() + 1);
-  Id space{H5Screate(H5S_SCALAR), H5Sclose};
-  Id a{H5Acreate2(where, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
-  check(H5Awrite(a, type, text.c_str()), std::string("writing attribute ") + name);
-}
-
-void write_bytes(hid_t where, const char* name, const std::string& text) {
-  const hsize_t n = text.size();
-  Id space{H5Screate_simple(1, &n, nullptr), H5Sclose};
-  Id set{H5Dcreate2(where, name, H5T_NATIVE_CHAR, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose};
-  if (n > 0) check(H5Dwrite(set, H5T_NATIVE_CHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()), std::string("writing ") + name);
-}
-
-void fsync_path(const std::string& path, int flags) {
-  const int fd = ::open(path.c_str(), flags);
-  if (fd < 0) throw std::runtime_error("cannot open " + path + " to sync it");
-  ::fsync(fd);
-  ::close(fd);
-}
+using h5::Id;
 
 class Reader {
  public:
@@ -122,36 +69,35 @@ class Reader {
 void write_checkpoint(const std::string& path, const std::string& scene_yaml, const sim::ImmersedBoundary& ib) {
   const sim::ImmersedBoundary::Carried c = ib.carried();
   const std::string tmp = path + ".tmp";
+  auto array = [](hid_t where, const std::string& name, const dvec& v) {
+    const host_vector<double> h = v;
+    h5::write(where, name, h.data(), {hsize_t(h.size())});
+  };
   {
-    Id file{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose};
-    if (file < 0) throw std::runtime_error("cannot create " + tmp);
-    write_string_attribute(file, "format", format);
-    write_attribute(file, "steps", H5T_NATIVE_LONG, c.steps);
-    write_attribute(file, "dt", H5T_NATIVE_DOUBLE, c.dt);
-    write_attribute(file, "level", H5T_NATIVE_INT, c.level);
-    write_attribute(file, "allowing", H5T_NATIVE_INT, c.allowing);
-    write_bytes(file, "scene", scene_yaml);
+    Id file = h5::create_file(tmp);
+    h5::attribute(file, "format", std::string(format));
+    h5::attribute(file, "steps", c.steps);
+    h5::attribute(file, "dt", c.dt);
+    h5::attribute(file, "level", c.level);
+    h5::attribute(file, "allowing", c.allowing);
+    h5::write_bytes(file, "scene", scene_yaml);
     {
-      Id fluid{H5Gcreate2(file, "fluid", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose};
-      write_attribute(fluid, "t", H5T_NATIVE_DOUBLE, c.fluid.t);
-      const char* u[3] = {"u0", "u1", "u2"};
-      for (int a = 0; a < 3; ++a) write_array(fluid, u[a], c.fluid.u[a]);
-      write_array(fluid, "p", c.fluid.p);
-      write_array(fluid, "phi0", c.fluid.phi[0]);
-      write_array(fluid, "phi1", c.fluid.phi[1]);
+      Id fluid = h5::create_group(file, "fluid");
+      h5::attribute(fluid, "t", c.fluid.t);
+      for (int a = 0; a < 3; ++a) array(fluid, "u" + std::to_string(a), c.fluid.u[a]);
+      array(fluid, "p", c.fluid.p);
+      array(fluid, "phi0", c.fluid.phi[0]);
+      array(fluid, "phi1", c.fluid.phi[1]);
     }
     {
-      Id batches{H5Gcreate2(file, "batches", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose};
-      for (std::size_t b = 0; b < c.batches.size(); ++b) write_array(batches, std::to_string(b).c_str(), c.batches[b]);
-      Id points{H5Gcreate2(file, "points", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose};
-      for (std::size_t p = 0; p < c.points.size(); ++p) write_array(points, std::to_string(p).c_str(), c.points[p]);
+      Id batches = h5::create_group(file, "batches");
+      for (std::size_t b = 0; b < c.batches.size(); ++b) array(batches, std::to_string(b), c.batches[b]);
+      Id points = h5::create_group(file, "points");
+      for (std::size_t p = 0; p < c.points.size(); ++p) array(points, std::to_string(p), c.points[p]);
     }
-    check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flushing " + tmp);
+    h5::flush_and_sync(file, tmp);
   }
-  fsync_path(tmp, O_RDONLY);
-  std::filesystem::rename(tmp, path);
-  const std::string dir = std::filesystem::path(path).parent_path().string();
-  fsync_path(dir.empty() ? "." : dir, O_RDONLY | O_DIRECTORY);
+  h5::replace(tmp, path);
 }
 
 Checkpoint read_checkpoint(const std::string& path) {

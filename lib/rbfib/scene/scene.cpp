@@ -376,6 +376,7 @@ Scene parse_scene(const std::string& yaml, const std::string& origin) {
     const Fields o = f.map("output");
     if (o.has("diagnostics_every")) s.diagnostics_every = int(o.integer("diagnostics_every", 1, 1000000000));
     if (o.has("checkpoint_every")) s.checkpoint_every = o.positive("checkpoint_every", "s");
+    if (o.has("snapshot_every")) s.snapshot_every = o.positive("snapshot_every", "s");
     o.finish();
   }
   f.finish();

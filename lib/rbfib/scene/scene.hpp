@@ -44,6 +44,7 @@ struct Scene {
   std::vector<sim::TetheredPoints> point_sets;
   int diagnostics_every = 1;  ///< steps between rows of the diagnostics table
   double checkpoint_every = 0;  ///< simulated time between checkpoints (s); 0: only at the end
+  double snapshot_every = 0;    ///< simulated time between snapshots (s); 0: none
 };
 
 /// Reads a scene from YAML text; `origin` names it in messages (a file name).

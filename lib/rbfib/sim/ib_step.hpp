@@ -108,6 +108,7 @@ class ImmersedBoundary {
   /// mismatched sizes, non-finite values or negative constants.
   index_t add(TetheredPoints points);
   const TetheredPoints& points(index_t p) const { return points_.at(p).points; }
+  index_t point_sets() const { return index_t(points_.size()); }
   cells::Batch& batch(index_t b) { return batches_.at(b).batch; }
   const cells::Batch& batch(index_t b) const { return batches_.at(b).batch; }
   index_t batches() const { return index_t(batches_.size()); }

@@ -1,0 +1,102 @@
+"""Tests of a run's output (docs/output.md): every array the XDMF names exists in its HDF5 file
+with the shape the XDMF states, the values are what the run computed (the steady shear on the
+grid, a sphere's mean curvature -1/R and radius R), and units are attributes."""
+import os
+import subprocess
+import tempfile
+import unittest
+import xml.etree.ElementTree as ET
+
+import h5py
+import numpy as np
+
+ROOT = os.environ.get("RBFIB_ROOT", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+BUILD = os.environ.get("RBFIB_BUILD", os.path.join(ROOT, "build"))
+RBFIB = os.path.join(BUILD, "bin", "rbfib")
+
+SCENE = """
+domain:
+  size: [16 um, 16 um, 16 um]
+  periodic: [x, z]
+  walls:
+    y: {lower: [-8 mm/s, 0 mm/s, 0 mm/s], upper: [8 mm/s, 0 mm/s, 0 mm/s]}
+  initial_flow: shear
+fluid: {density: 1 g/cm^3, viscosity: 0.1 cP}
+grid: {h: 1 um}
+time: {integrator: backward_forward_euler, dt: 0.2 us, end: 0.4 us}
+ib: {kernel: bspline3}
+cell_types:
+  - {name: ball, preset: skalak_sphere, radius: 3 um, data_sites: 144, sample_sites: 400}
+cells:
+  - {type: ball, center: [8 um, 8 um, 8 um]}
+tethered_points:
+  - {name: wall, plane: {y: 1 um, points: [8, 8]}, k: 2.5 dyn/cm, eta: 0 dyn s/cm}
+output: {snapshot_every: 0.2 us}
+"""
+
+
+class Output(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.TemporaryDirectory()
+        scene = os.path.join(cls.dir.name, "scene.yaml")
+        with open(scene, "w") as f:
+            f.write(SCENE)
+        cls.out = os.path.join(cls.dir.name, "out")
+        r = subprocess.run([RBFIB, "run", scene, "--out", cls.out], capture_output=True, text=True, timeout=300)
+        assert r.returncode == 0, r.stdout + r.stderr
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.dir.cleanup()
+
+    def test_every_array_of_the_xdmf_exists_with_its_shape(self):
+        root = ET.parse(os.path.join(self.out, "run.xmf")).getroot()
+        series = root.find("Domain/Grid")
+        self.assertEqual(series.get("CollectionType"), "Temporal")
+        snapshots = series.findall("Grid")
+        self.assertEqual(len(snapshots), 3)  # t = 0, 0.2, 0.4 us
+        self.assertEqual([float(s.find("Time").get("Value")) for s in snapshots], [0.0, 2e-7, 4e-7])
+        items = [d for d in root.iter("DataItem") if d.get("Format") == "HDF"]
+        self.assertEqual(len(items), 3 * (2 + 5 + 1))
+        for d in items:
+            path, dataset = d.text.split(":")
+            with h5py.File(os.path.join(self.out, path), "r") as f:
+                self.assertIn(dataset, f, d.text)
+                shape = tuple(int(x) for x in d.get("Dimensions").split())
+                self.assertEqual(f[dataset].shape, shape, d.text)
+        for g in snapshots[0].findall("Grid"):
+            topology = g.find("Topology")
+            if topology.get("TopologyType") == "Triangle":
+                path, dataset = topology.find("DataItem").text.split(":")
+                with h5py.File(os.path.join(self.out, path), "r") as f:
+                    tri = f[dataset][()]
+                    n = f[dataset.replace("triangles", "points")].shape[0]
+                self.assertEqual(tri.shape[0], 2 * n - 4)  # a closed triangulation of n sites
+                self.assertTrue((tri >= 0).all() and (tri < n).all())
+
+    def test_values_are_those_of_the_run(self):
+        with h5py.File(os.path.join(self.out, "snapshots", "snapshot_000000.h5"), "r") as f:
+            self.assertEqual(f.attrs["t"], 0.0)
+            u = f["fluid/velocity"][()]
+            units = f["fluid/velocity"].attrs["units"]
+            self.assertEqual(units.decode() if isinstance(units, bytes) else units, "cm/s")
+            h = 1e-4
+            y = (np.arange(16) + 0.5) * h
+            shear = 1000.0 * (y - 8e-4)  # the steady shear, cm/s
+            np.testing.assert_allclose(u[:, :, :, 0], np.broadcast_to(shear[None, :, None], (16, 16, 16)), atol=1e-12)
+            np.testing.assert_allclose(u[:, :, :, 1:], 0.0, atol=1e-12)
+            X = f["cells/0/points"][()]
+            r = np.linalg.norm(X - 8e-4, axis=1)
+            np.testing.assert_allclose(r, 3e-4, rtol=1e-3)
+            np.testing.assert_allclose(f["cells/0/mean_curvature"][()], -1 / 3e-4, rtol=1e-3)
+            np.testing.assert_allclose(f["cells/0/force_density"][()], 0.0, atol=1e-6)  # at rest
+            # The interpolated velocity at the sites is the shear at their height (B3 reproduces linears).
+            np.testing.assert_allclose(f["cells/0/velocity"][()][:, 0], 1000.0 * (X[:, 1] - 8e-4), atol=1e-9)
+            P = f["points/0/points"][()]
+            self.assertEqual(P.shape, (64, 3))
+            np.testing.assert_allclose(P[:, 1], 1e-4)
+
+
+if __name__ == "__main__":
+    unittest.main()
