@@ -10,7 +10,7 @@ CMAKE_ARGS ?=
 # Debian packages the project needs (Thrust comes from the CUDA toolkit when it is installed,
 # else from Debian's libthrust-dev).
 DEBS := cmake make g++ ccache libomp-dev libeigen3-dev libopenblas-openmp-dev libfftw3-dev libhypre-dev libhdf5-dev libyaml-cpp-dev libcli11-dev libgtest-dev googletest \
-        python3 python3-matplotlib python3-numpy python3-yaml python3-h5py
+        python3 python3-matplotlib python3-numpy python3-yaml python3-h5py python3-venv
 THRUST_FROM_CUDA := $(wildcard /usr/local/cuda/targets/x86_64-linux/include/cccl/thrust/version.h /usr/local/cuda/include/thrust/version.h)
 ifeq ($(strip $(THRUST_FROM_CUDA)),)
 DEBS += libthrust-dev libcub-dev
@@ -35,6 +35,10 @@ deps:
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing >/dev/null \
 	    || { echo "deps: apt-get install failed for:$$missing"; exit 1; }; \
 	else echo "deps: all present"; fi
+	@# VTK's XDMF reader, for the test that opens a run's XDMF as ParaView does: Debian's
+	@# python3-vtk9 is built without it, so the VTK wheel from PyPI goes into a venv.
+	@[ -x .venv-vtk/bin/python ] || { echo "deps: VTK (PyPI wheel) into .venv-vtk"; $(PY) -m venv .venv-vtk && \
+	  .venv-vtk/bin/pip install -q 'vtk>=9.2' || { echo "deps: pip install vtk failed"; rm -rf .venv-vtk; exit 1; }; }
 
 configure: deps
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DRBFIB_PYTHON=$(PY) $(CMAKE_ARGS) >/dev/null

@@ -1,6 +1,8 @@
 """Tests of a run's output (docs/output.md): every array the XDMF names exists in its HDF5 file
 with the shape the XDMF states, the values are what the run computed (the steady shear on the
-grid, a sphere's mean curvature -1/R and radius R), and units are attributes."""
+grid, a sphere's mean curvature -1/R and radius R), units are attributes, and VTK's XDMF reader
+(the one ParaView uses) opens the series and reads the same arrays."""
+import json
 import os
 import subprocess
 import tempfile
@@ -13,6 +15,33 @@ import numpy as np
 ROOT = os.environ.get("RBFIB_ROOT", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
 BUILD = os.environ.get("RBFIB_BUILD", os.path.join(ROOT, "build"))
 RBFIB = os.path.join(BUILD, "bin", "rbfib")
+VTK_PYTHON = os.path.join(ROOT, ".venv-vtk", "bin", "python")  # made by `make deps`
+
+# Run by VTK's Python: open run.xmf, go to the second time, report each block's arrays.
+READ_WITH_VTK = """
+import json, sys
+import numpy as np
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+r = vtk.vtkXdmfReader()
+r.SetFileName(sys.argv[1])
+r.UpdateInformation()
+times = r.GetOutputInformation(0).Get(vtk.vtkStreamingDemandDrivenPipeline.TIME_STEPS())
+r.UpdateTimeStep(times[1])
+out = r.GetOutputDataObject(0)
+blocks = {}
+for i in range(out.GetNumberOfBlocks()):
+    b = out.GetBlock(i)
+    name = out.GetMetaData(i).Get(vtk.vtkCompositeDataSet.NAME()).split("[")[0]
+    arrays = {}
+    for data in (b.GetPointData(), b.GetCellData()):
+        for k in range(data.GetNumberOfArrays()):
+            arrays[data.GetArrayName(k)] = vtk_to_numpy(data.GetArray(k)).tolist()
+    blocks[name] = {"points": b.GetNumberOfPoints(), "cells": b.GetNumberOfCells(),
+                    "xyz": vtk_to_numpy(b.GetPoints().GetData()).tolist() if b.GetPoints() else None,
+                    "arrays": arrays}
+print(json.dumps({"times": list(times), "blocks": blocks}))
+"""
 
 SCENE = """
 domain:
@@ -96,6 +125,30 @@ class Output(unittest.TestCase):
             P = f["points/0/points"][()]
             self.assertEqual(P.shape, (64, 3))
             np.testing.assert_allclose(P[:, 1], 1e-4)
+
+
+    def test_vtk_reads_the_series_as_written(self):
+        self.assertTrue(os.path.exists(VTK_PYTHON), "VTK's Python is missing: run `make deps` (it makes .venv-vtk)")
+        r = subprocess.run([VTK_PYTHON, "-c", READ_WITH_VTK, os.path.join(self.out, "run.xmf")], capture_output=True, text=True,
+                           timeout=300)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        got = json.loads(r.stdout.strip().split("\n")[-1])
+        np.testing.assert_allclose(got["times"], [0.0, 2e-7, 4e-7])
+        blocks = got["blocks"]
+        self.assertEqual(sorted(blocks), ["ball", "fluid", "wall"])
+        with h5py.File(os.path.join(self.out, "snapshots", "snapshot_000001.h5"), "r") as f:
+            fluid = blocks["fluid"]
+            self.assertEqual(fluid["cells"], 16 ** 3)
+            # VTK orders cell data x fastest, as the (z, y, x) datasets are stored.
+            np.testing.assert_array_equal(np.array(fluid["arrays"]["velocity"]), f["fluid/velocity"][()].reshape(-1, 3))
+            np.testing.assert_array_equal(np.array(fluid["arrays"]["pressure"]), f["fluid/pressure"][()].reshape(-1))
+            ball = blocks["ball"]
+            self.assertEqual(ball["points"], 400)
+            self.assertEqual(ball["cells"], 2 * 400 - 4)
+            np.testing.assert_array_equal(np.array(ball["xyz"]), f["cells/0/points"][()])
+            for name in ("velocity", "force_density", "mean_curvature"):
+                np.testing.assert_array_equal(np.array(ball["arrays"][name]), f["cells/0/" + name][()])
+            np.testing.assert_array_equal(np.array(blocks["wall"]["xyz"]), f["points/0/points"][()])
 
 
 if __name__ == "__main__":
