@@ -183,7 +183,7 @@ TEST(Scene, EveryBadInputNamesItsField) {
       {"data_sites: 144\n    sample_sites: 144", "data_sites: 3\n    sample_sites: 144", "cell_types[0].data_sites"},
       {"{type: plt,", "{type: rbc,", "cells[0].type"},
       {"center: [4 um, 3 um, 4 um]", "center: [4 um, 13 um, 4 um]", "cells[0].center[1]"},
-      {"center: [4 um, 3 um, 4 um]", "center: [4 um, 0.2 um, 4 um]", "cells (type 'plt', cell 0 of that type)"},  // through a wall
+      {"center: [4 um, 3 um, 4 um]", "center: [4 um, 0.2 um, 4 um]", "cells[0]"},  // through a wall
       {"axis: [1, 0, 0]", "axis: [0, 0, 0]", "cells[0].axis"},
       {"angle: 90 deg", "angle: 90 um", "cells[0].angle"},
       {"force: [0 dyn, 1e-9 dyn, 0 dyn]", "force: [0 dyn, 1e-9 dyn/cm, 0 dyn]", "cells[0].force[1]"},

@@ -68,16 +68,14 @@ Batch::Batch(std::shared_ptr<const CellType> type, const std::vector<Placement>&
   for (index_t c = 0; c < cells_; ++c) place(c, placements[c]);
 }
 
-void Batch::place(index_t c, const Placement& p) {
-  const std::string cell = "batch of '" + type_->name() + "', cell " + to_text(c);
-  require(c >= 0 && c < cells_, cell + ": index", c, "must lie in [0, " + to_text(cells_) + ")");
+std::vector<double> placed(const std::vector<double>& reference, index_t n, const Placement& p, const std::string& who) {
   const double an = std::sqrt(p.axis[0] * p.axis[0] + p.axis[1] * p.axis[1] + p.axis[2] * p.axis[2]);
-  require(an > 0 && std::isfinite(an), cell + ": rotation axis length", an, "must be finite and > 0");
-  require(std::isfinite(p.angle), cell + ": rotation angle (rad)", p.angle, "must be finite");
+  require(an > 0 && std::isfinite(an), who + ": rotation axis length", an, "must be finite and > 0");
+  require(std::isfinite(p.angle), who + ": rotation angle (rad)", p.angle, "must be finite");
   for (int d = 0; d < 3; ++d) {
-    require(p.stretch[d] > 0 && std::isfinite(p.stretch[d]), cell + ": stretch[" + to_text(d) + "]", p.stretch[d],
+    require(p.stretch[d] > 0 && std::isfinite(p.stretch[d]), who + ": stretch[" + to_text(d) + "]", p.stretch[d],
             "must be finite and > 0");
-    require(std::isfinite(p.center[d]), cell + ": center[" + to_text(d) + "] (cm)", p.center[d], "must be finite");
+    require(std::isfinite(p.center[d]), who + ": center[" + to_text(d) + "] (cm)", p.center[d], "must be finite");
   }
   // Rodrigues: R = cos a I + sin a [k]x + (1 - cos a) k k^T.
   const double k[3] = {p.axis[0] / an, p.axis[1] / an, p.axis[2] / an};
@@ -86,15 +84,21 @@ void Batch::place(index_t c, const Placement& p) {
   double R[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) R[i][j] = (i == j ? ca : 0.0) + sa * K[i][j] + (1 - ca) * k[i] * k[j];
-  const index_t nd = type_->n_data();
-  const std::vector<double>& Xr = type_->reference_data_host();
-  std::vector<double> cols(static_cast<std::size_t>(3 * nd));
-  for (index_t i = 0; i < nd; ++i)
+  std::vector<double> X(static_cast<std::size_t>(3 * n));
+  for (index_t i = 0; i < n; ++i)
     for (int a = 0; a < 3; ++a) {
       double v = p.center[a];
-      for (int b = 0; b < 3; ++b) v += R[a][b] * p.stretch[b] * Xr[b * nd + i];
-      cols[a * nd + i] = v;
+      for (int b = 0; b < 3; ++b) v += R[a][b] * p.stretch[b] * reference[b * n + i];
+      X[a * n + i] = v;
     }
+  return X;
+}
+
+void Batch::place(index_t c, const Placement& p) {
+  const std::string cell = "batch of '" + type_->name() + "', cell " + to_text(c);
+  require(c >= 0 && c < cells_, cell + ": index", c, "must lie in [0, " + to_text(cells_) + ")");
+  const index_t nd = type_->n_data();
+  const std::vector<double> cols = placed(type_->reference_data_host(), nd, p, cell);
   for (int a = 0; a < 3; ++a)
     thrust::copy(cols.begin() + a * nd, cols.begin() + (a + 1) * nd,
                  state_.storage().begin() + (a * cells_ + c) * nd);

@@ -35,6 +35,11 @@ struct Placement {
   std::array<double, 3> stretch{1, 1, 1};
 };
 
+/// The placed positions center + R diag(stretch) X_ref of n reference points (component-major,
+/// X_ref[d n + i]; host). Throws InputError naming `who` for a zero or non-finite axis, a
+/// non-finite angle or centre, or a stretch <= 0.
+std::vector<double> placed(const std::vector<double>& reference, index_t n, const Placement& p, const std::string& who);
+
 /// Per-cell results of a force call.
 struct CellDiagnostics {
   std::vector<double> energy;       ///< elastic + bending energy (erg)

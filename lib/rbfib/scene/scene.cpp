@@ -29,6 +29,7 @@ class Fields {
     if (!node_.IsMap()) throw InputError(path_.empty() ? "scene" : path_, text(node_), "expected a map of keys and values");
   }
   std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  const std::string& path() const { return path_; }
   bool has(const std::string& key) const { return bool(node_[key]); }
 
   YAML::Node get(const std::string& key) const {
@@ -289,6 +290,26 @@ CellEntry read_cell(const Fields& f, const Scene& s) {
         throw InputError(f.at("stretch") + "[" + std::to_string(d) + "]", to_text(c.placement.stretch[d]), "must lie in (0.1, 10)");
   }
   if (f.has("force")) c.force = f.triple("force", "dyn");
+  // The placed reference shape at the type's data sites must lie between the walls.
+  const CellTypeEntry& t = *std::find_if(s.types.begin(), s.types.end(), [&](const CellTypeEntry& e) { return e.spec.name == c.type; });
+  const surface::SphereSites& sites = t.spec.data_sites;
+  const index_t n = sites.size();
+  std::vector<double> reference(static_cast<std::size_t>(3 * n));
+  for (index_t i = 0; i < n; ++i) {
+    double x[3];
+    t.spec.shape.position(sites.lambda[i], sites.theta[i], x);
+    for (int d = 0; d < 3; ++d) reference[d * n + i] = x[d];
+  }
+  const std::vector<double> X = cells::placed(reference, n, c.placement, f.path());
+  for (int d = 0; d < 3; ++d) {
+    if (s.grid.periodic(d)) continue;
+    for (index_t i = 0; i < n; ++i)
+      if (!(X[d * n + i] > 0 && X[d * n + i] < s.grid.length[d]))
+        throw InputError(f.path(), "a cell of type '" + c.type + "' at [" + to_text(c.placement.center[0] / units::um) + ", " +
+                                       to_text(c.placement.center[1] / units::um) + ", " + to_text(c.placement.center[2] / units::um) + "] um",
+                         std::string("reaches through a wall: its surface crosses ") + axis_name[d] + " = 0 or " +
+                             to_text(s.grid.length[d] / units::um) + " um");
+  }
   f.finish();
   return c;
 }
@@ -420,20 +441,6 @@ sim::ImmersedBoundary build(const Scene& s) {
     const auto type = std::make_shared<const cells::CellType>(t.spec);
     cells::Batch batch(type, placements);
     for (std::size_t c = 0; c < forces.size(); ++c) batch.set_body_force(index_t(c), forces[c]);
-    // Every data site must lie between the walls.
-    const std::vector<double> X = batch.positions_host();
-    const index_t nd = type->n_data(), N = batch.size();
-    for (int d = 0; d < 3; ++d) {
-      if (s.grid.periodic(d)) continue;
-      for (index_t c = 0; c < N; ++c)
-        for (index_t i = 0; i < nd; ++i) {
-          const double x = X[(d * N + c) * nd + i];
-          if (!(x > 0 && x < s.grid.length[d]))
-            throw InputError("cells (type '" + t.spec.name + "', cell " + to_text(c) + " of that type)", to_text(x / units::um) + " um",
-                             std::string("reaches through a wall: its surface crosses ") + axis_name[d] + " = 0 or " +
-                                 to_text(s.grid.length[d] / units::um) + " um");
-        }
-    }
     ib.add(std::move(batch));
   }
   for (const sim::TetheredPoints& p : s.point_sets) ib.add(p);
