@@ -32,12 +32,12 @@ using namespace rbfib;
 
 namespace {
 
-/// The shear rate between the walls (1/s): the largest wall-velocity difference over the gap.
+/// The shear rate between the walls at t = 0 (1/s): the largest wall-velocity difference over the gap.
 double shear_rate(const scene::Scene& s) {
   double g = 0;
   for (int d = 0; d < 3; ++d)
     if (!s.grid.periodic(d))
-      for (int a = 0; a < 3; ++a) g = std::max(g, std::abs(s.walls[d][1][a] - s.walls[d][0][a]) / s.grid.length[d]);
+      for (int a = 0; a < 3; ++a) g = std::max(g, std::abs(s.walls[d][1].at(0)[a] - s.walls[d][0].at(0)[a]) / s.grid.length[d]);
   return g;
 }
 

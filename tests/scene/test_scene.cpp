@@ -5,6 +5,7 @@
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
+#include "rbfib/linalg/blas.hpp"
 #include "rbfib/scene/checkpoint.hpp"
 #include "rbfib/scene/scene.hpp"
 
@@ -88,7 +89,7 @@ TEST(Scene, TheValuesArriveInCgs) {
   EXPECT_EQ(s.grid.cells[1], 12);
   EXPECT_TRUE(s.grid.periodic(0));
   EXPECT_FALSE(s.grid.periodic(1));
-  EXPECT_NEAR(s.walls[1][1][0], 1.2, 1e-15);  // 12 mm/s
+  EXPECT_NEAR(s.walls[1][1].at(0)[0], 1.2, 1e-15);  // 12 mm/s
   EXPECT_TRUE(s.initial_shear);
   EXPECT_NEAR(s.fluid.viscosity, 1e-3, 1e-18);
   EXPECT_EQ(s.fluid_options.integrator, TimeIntegrator::peskin_two_stage);
@@ -199,6 +200,33 @@ TEST(Scene, EveryBadInputNamesItsField) {
   EXPECT_EQ(field_of(""), "mutant");               // empty
   const std::string m = testing::message_of<InputError>([&] { parse_scene(replaced(ok, "0.1 cP", "0.1 cm"), "m"); });
   EXPECT_NE(m.find("fluid.viscosity = '0.1 cm': has the dimension length; expected dynamic viscosity"), std::string::npos) << m;
+}
+
+TEST(Scene, AWallTurnsAsInSection521) {
+  // The top wall at 16 mm/s (sin alpha e1 + cos alpha e3), alpha from 0 to pi/4 over 7.2 ms.
+  const std::string turning = replaced(channel_scene, "upper: [12 mm/s, 0 mm/s, 0 mm/s]",
+                                       "upper: {speed: 16 mm/s, turn: {from: 0 deg, to: 45 deg, over: 7.2 ms}}");
+  const Scene s = parse_scene(turning, "turning");
+  const WallMotion& top = s.walls[1][1];
+  ASSERT_TRUE(top.turning);
+  const double c = 1.6;  // cm/s
+  auto expect_velocity = [&](double t, double alpha) {
+    const auto v = top.at(t);
+    EXPECT_NEAR(v[0], c * std::sin(alpha), 1e-14) << t;
+    EXPECT_EQ(v[1], 0.0) << t;
+    EXPECT_NEAR(v[2], c * std::cos(alpha), 1e-14) << t;
+  };
+  const double pi = 3.14159265358979323846;
+  expect_velocity(0, 0);
+  expect_velocity(3.6e-3, pi / 8);
+  expect_velocity(7.2e-3, pi / 4);
+  expect_velocity(20e-3, pi / 4);
+  // The flow starts as the shear of the walls at t = 0: along z, 1.6 cm/s at the top.
+  sim::ImmersedBoundary ib = build(s);
+  EXPECT_EQ(blas::norm_inf(ib.fluid_state().u[0]), 0.0);
+  EXPECT_NEAR(blas::norm_inf(ib.fluid_state().u[2]), c * 11.5 / 12, 1e-12);  // the top cell centres, y = 11.5 um
+  EXPECT_EQ(field_of(replaced(turning, "over: 7.2 ms", "over: 7.2 um")), "domain.walls.y.upper.turn.over");
+  EXPECT_EQ(field_of(replaced(turning, "speed: 16 mm/s", "pace: 16 mm/s")), "domain.walls.y.upper.speed");
 }
 
 void expect_same(const dvec& a, const dvec& b, const std::string& what) {

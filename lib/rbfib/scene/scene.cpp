@@ -137,9 +137,23 @@ void read_domain(const Fields& f, Scene& s) {
       const Fields w = walls.map(axis_name[d]);
       for (int side = 0; side < 2; ++side) {
         const char* key = side ? "upper" : "lower";
-        s.walls[d][side] = w.triple(key, "cm/s");
-        if (s.walls[d][side][d] != 0)
-          throw InputError(w.at(key) + "[" + std::to_string(d) + "]", to_text(s.walls[d][side][d]) + " cm/s",
+        WallMotion& m = s.walls[d][side];
+        m.axis = d;
+        if (w.has(key) && w.get(key).IsMap()) {
+          const Fields t = w.map(key);
+          m.turning = true;
+          m.speed = t.nonnegative("speed", "cm/s");
+          const Fields turn = t.map("turn");
+          m.from = turn.quantity("from", "");
+          m.to = turn.quantity("to", "");
+          m.over = turn.positive("over", "s");
+          turn.finish();
+          t.finish();
+          continue;
+        }
+        m.velocity = w.triple(key, "cm/s");
+        if (m.velocity[d] != 0)
+          throw InputError(w.at(key) + "[" + std::to_string(d) + "]", to_text(m.velocity[d]) + " cm/s",
                            "a wall moves in its own plane: its normal velocity must be 0");
       }
       w.finish();
@@ -360,6 +374,16 @@ sim::TetheredPoints read_points(const Fields& f, const Scene& s) {
 
 }  // namespace
 
+std::array<double, 3> WallMotion::at(double t) const {
+  if (!turning) return velocity;
+  const double alpha = from + (to - from) * std::clamp(t / over, 0.0, 1.0);
+  const int p = axis == 0 ? 1 : 0, q = axis == 2 ? 1 : 2;  // the tangential axes, p < q
+  std::array<double, 3> v{0, 0, 0};
+  v[q] = speed * std::cos(alpha);
+  v[p] = speed * std::sin(alpha);
+  return v;
+}
+
 Scene parse_scene(const std::string& yaml, const std::string& origin) {
   YAML::Node root;
   try {
@@ -415,7 +439,7 @@ Scene load_scene(const std::string& path) {
 
 sim::ImmersedBoundary build(const Scene& s) {
   const auto walls = s.walls;
-  BoundaryVelocity boundary = [walls](int a, int d, int side, double, double, double, double) { return walls[d][side][a]; };
+  BoundaryVelocity boundary = [walls](int a, int d, int side, double t, double, double, double) { return walls[d][side].at(t)[a]; };
   sim::ImmersedBoundary ib(s.grid, s.fluid, s.fluid_options, boundary, s.ib);
   if (s.initial_shear) {
     // The steady flow between the walls: linear in the wall-normal coordinate for each wall axis
@@ -425,7 +449,10 @@ sim::ImmersedBoundary build(const Scene& s) {
         const double p[3] = {x, y, z};
         double u = 0;
         for (int d = 0; d < 3; ++d)
-          if (!s.grid.periodic(d)) u += walls[d][0][a] + (walls[d][1][a] - walls[d][0][a]) * p[d] / s.grid.length[d];
+          if (!s.grid.periodic(d)) {
+            const double lo = walls[d][0].at(0)[a], hi = walls[d][1].at(0)[a];
+            u += lo + (hi - lo) * p[d] / s.grid.length[d];
+          }
         return u;
       });
   }
@@ -455,8 +482,16 @@ std::string describe(const Scene& s) {
   for (int d = 0; d < 3; ++d) {
     o << " " << axis_name[d] << (g.periodic(d) ? " periodic" : " walls");
     if (!g.periodic(d))
-      o << " (lower [" << s.walls[d][0][0] * 10 << ", " << s.walls[d][0][1] * 10 << ", " << s.walls[d][0][2] * 10 << "] mm/s, upper ["
-        << s.walls[d][1][0] * 10 << ", " << s.walls[d][1][1] * 10 << ", " << s.walls[d][1][2] * 10 << "] mm/s)";
+      for (int side = 0; side < 2; ++side) {
+        const WallMotion& m = s.walls[d][side];
+        o << (side ? ", upper " : " (lower ");
+        if (m.turning)
+          o << m.speed * 10 << " mm/s turning from " << m.from * 180 / 3.14159265358979323846 << " to "
+            << m.to * 180 / 3.14159265358979323846 << " deg over " << m.over / units::ms << " ms";
+        else
+          o << "[" << m.velocity[0] * 10 << ", " << m.velocity[1] * 10 << ", " << m.velocity[2] * 10 << "] mm/s";
+        o << (side ? ")" : "");
+      }
     o << (d < 2 ? "," : "\n");
   }
   o << "  grid " << g.cells[0] << " x " << g.cells[1] << " x " << g.cells[2] << ", h = " << g.h(0) / units::um << " x "

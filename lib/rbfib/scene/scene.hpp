@@ -27,6 +27,20 @@ struct CellEntry {
   std::array<double, 3> force{0, 0, 0};  ///< constant total force on the cell (dyn)
 };
 
+/// The motion of one wall: a constant velocity, or (Sec. 5.2.1) a constant speed whose direction
+/// in the wall's plane turns from one angle to another over a time and then stays:
+/// direction = cos(alpha) e_q + sin(alpha) e_p, with p < q the wall's two tangential axes (for a
+/// wall across y: alpha from e3 toward e1, the seed's 16 mm/s (sin alpha e1 + cos alpha e3)).
+struct WallMotion {
+  std::array<double, 3> velocity{0, 0, 0};  ///< cm/s (constant motion)
+  bool turning = false;
+  double speed = 0;                 ///< cm/s
+  double from = 0, to = 0, over = 0;  ///< rad, rad, s
+  int axis = 1;                     ///< the wall's normal axis
+  /// The wall's velocity at time t (cm/s).
+  std::array<double, 3> at(double t) const;
+};
+
 struct Scene {
   std::string name;    ///< from the file name or the "name" key
   std::string source;  ///< the YAML text as read (kept with the output)
@@ -34,8 +48,8 @@ struct Scene {
   FluidParameters fluid;
   NavierStokesOptions fluid_options;
   sim::IbOptions ib;
-  /// Velocity of each wall (cm/s), [axis][side]; zero on periodic axes.
-  std::array<std::array<std::array<double, 3>, 2>, 3> walls{};
+  /// The motion of each wall, [axis][side]; at rest on periodic axes.
+  std::array<std::array<WallMotion, 2>, 3> walls{};
   /// Start the flow as the steady shear between the walls (else at rest).
   bool initial_shear = false;
   double t_end = 0;  ///< s
