@@ -13,9 +13,11 @@
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/linalg/blas.hpp"
+#include "rbfib/scene/scene.hpp"
 #include "rbfib/sim/ib_step.hpp"
 
 #include <chrono>
+#include <fstream>
 #include <cmath>
 
 using namespace rbfib;
@@ -112,21 +114,33 @@ struct Scheme {
   }
 };
 
+/// A run's setup as a scene (scene/, docs/scenes.md), its values in CGS to 17 digits so that it
+/// reads back exactly; kept beside the results, where `rbfib run` reruns it.
+std::string scene_text(int cells_per_axis, double dt, index_t n_sample, double radius, double t_end, Scheme scheme) {
+  const std::string L = to_text(16 * units::um) + " cm", c = to_text(8 * units::um) + " cm";
+  return "# chapter4_elastic: a stretched Skalak sphere relaxing (Sec. 4.2.2.1)\n"
+         "domain: {size: [" + L + ", " + L + ", " + L + "], periodic: [x, y, z]}\n"
+         "fluid: {density: 1 g/cm^3, viscosity: " + to_text(0.1 * units::cP) + " P}\n"
+         "grid: {cells: [" + to_text(cells_per_axis) + ", " + to_text(cells_per_axis) + ", " + to_text(cells_per_axis) + "]}\n"
+         "time: {integrator: " + (scheme.integrator == TimeIntegrator::peskin_two_stage ? "peskin_two_stage" : "backward_forward_euler") +
+         ", coupling: " + (scheme.coupling == sim::Coupling::midpoint ? "midpoint" : "seed") + ", dt: " + to_text(dt) + " s, end: " +
+         to_text(t_end) + " s}\n"
+         "ib: {kernel: bspline3}\n"
+         "cell_types:\n  - {name: sphere, preset: skalak_sphere, radius: " + to_text(radius) + " cm, data_sites: 625, sample_sites: " +
+         to_text(n_sample) + "}\n"
+         "cells:\n  - {type: sphere, center: [" + c + ", " + c + ", " + c + "], stretch: [1, " + to_text(1 / 1.1) + ", " + to_text(1.1) +
+         "]}\n";
+}
+
 Run relax(int cells_per_axis, double dt, index_t n_sample, double radius, double t_end, const st::Options& opt,
           Scheme scheme = {}) {
-  const double L = 16 * units::um;
-  const MacGrid g = make_mac_grid(3, {cells_per_axis, cells_per_axis, cells_per_axis}, {L, L, L},
-                                  {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
-  NavierStokesOptions o;
-  o.dt = dt;
-  o.integrator = scheme.integrator;
-  sim::IbOptions io;
-  io.coupling = scheme.coupling;
-  sim::ImmersedBoundary ib(g, FluidParameters{1.0, 0.1 * units::cP}, o, {}, io);
-  cells::Placement p;
-  p.center = {8 * units::um, 8 * units::um, 8 * units::um};
-  p.stretch = {1.0, 1 / 1.1, 1.1};
-  ib.add(cells::Batch(cells::skalak_sphere(radius, 625, n_sample), {p}));
+  const std::string text = scene_text(cells_per_axis, dt, n_sample, radius, t_end, scheme);
+  const std::string file = "scene_n" + to_text(cells_per_axis) + "_dt" + to_text(std::lround(dt / units::ns)) + "ns_" +
+                           (scheme.coupling == sim::Coupling::midpoint ? "midpoint" : "seed") +
+                           (scheme.integrator == TimeIntegrator::peskin_two_stage ? "_peskin" : "_bfe") + ".yaml";
+  std::ofstream(opt.out_dir + "/" + file) << text;
+  sim::ImmersedBoundary ib = scene::build(scene::parse_scene(text, file));
+  const MacGrid& g = ib.fluid().grid();
   Run r;
   r.h_um = g.h(0) / units::um;
   r.dt_us = dt / units::us;
