@@ -15,6 +15,7 @@ BUILD = os.environ.get("RBFIB_BUILD", os.path.join(ROOT, "build"))
 RBFIB = os.path.join(BUILD, "bin", "rbfib")
 SCENES = sorted(glob.glob(os.path.join(ROOT, "scenes", "*.yaml")))
 MUTANTS = int(os.environ.get("RBFIB_MUTANTS", "500"))
+RUN_VALID = int(os.environ.get("RBFIB_MUTANTS_RUN", "8"))  # valid mutants that also run a step
 
 
 def rbfib(*args, timeout=60):
@@ -144,6 +145,7 @@ class Mutants(unittest.TestCase):
             with open(p) as f:
                 texts.append(f.read())
         counts = {0: 0, 2: 0}
+        ran = 0
         with tempfile.TemporaryDirectory() as d:
             path = os.path.join(d, "mutant.yaml")
             for k in range(MUTANTS):
@@ -153,11 +155,22 @@ class Mutants(unittest.TestCase):
                 r = rbfib("check", path)
                 self.assertIn(r.returncode, (0, 2), f"mutant {k} exited {r.returncode}:\n{text}\n{r.stderr}")
                 counts[r.returncode] += 1
+                if r.returncode == 0 and ran < RUN_VALID:
+                    # A valid mutant also runs: one step, then exit 0, or a named stop (2: a problem
+                    # only building finds; 3: a numerical stop), never a crash or a hang.
+                    ran += 1
+                    out = os.path.join(d, f"run{k}")
+                    run = rbfib("run", path, "--out", out, "--until", "1 ns", timeout=600)
+                    self.assertIn(run.returncode, (0, 2, 3), f"mutant {k} run exited {run.returncode}:\n{text}\n{run.stderr}")
+                    if run.returncode == 2:
+                        self.assertRegex(run.stderr.strip(), r"^rbfib: \S.* = [^\n]*$", f"mutant {k}:\n{run.stderr}")
+                    if run.returncode == 3:
+                        self.assertIn("rbfib: stopped: ", run.stdout + run.stderr, f"mutant {k}")
                 if r.returncode == 2:
                     lines = r.stderr.strip().split("\n")
                     self.assertEqual(len(lines), 1, f"mutant {k}: more than one line:\n{r.stderr}")
                     self.assertRegex(lines[0], r"^rbfib: \S.* = ", f"mutant {k}: no field named:\n{text}")
-        print(f"{MUTANTS} mutants: {counts[0]} valid, {counts[2]} rejected with a named field")
+        print(f"{MUTANTS} mutants: {counts[0]} valid ({ran} of them run a step), {counts[2]} rejected with a named field")
 
 
 if __name__ == "__main__":
