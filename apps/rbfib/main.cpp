@@ -41,6 +41,32 @@ double shear_rate(const scene::Scene& s) {
   return g;
 }
 
+/// A rough estimate of what a scene needs (bytes): about 40 grid vectors for the fluid, the
+/// operators of each cell type (six blocks of n_s (+ n_d with bending) x n_d).
+struct Memory {
+  double fluid = 0, cells = 0;
+};
+Memory memory(const scene::Scene& s) {
+  Memory m;
+  for (const scene::CellTypeEntry& t : s.types) {
+    const double nd = double(t.spec.data_sites.size()), ns = double(t.spec.sample_sites.size());
+    m.cells += 8.0 * 6.0 * (ns + (t.spec.model.bending() ? nd : 0)) * nd;
+  }
+  m.fluid = 8.0 * 40.0 * double(s.grid.cells[0]) * s.grid.cells[1] * s.grid.cells[2];
+  return m;
+}
+
+double physical_memory() { return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE)); }
+
+/// Refuses a scene that cannot fit in this machine's memory (rather than failing an allocation
+/// or being killed minutes into the build).
+void check_memory(const scene::Scene& s) {
+  const Memory m = memory(s);
+  if (m.fluid + m.cells > physical_memory())
+    throw InputError("grid and cell_types", to_text((m.fluid + m.cells) / 1073741824) + " GiB estimated",
+                     "more than this machine's " + to_text(physical_memory() / 1073741824) + " GiB of memory");
+}
+
 void print_check(const scene::Scene& s) {
   std::cout << scene::describe(s);
   const double rho = s.fluid.density, mu = s.fluid.viscosity, gdot = shear_rate(s);
@@ -63,14 +89,9 @@ void print_check(const scene::Scene& s) {
   // Eq. 5.4: dt <= (1/4) sqrt(h rho / ||f||_inf), i.e. ||f||_inf <= h rho / (16 dt^2).
   std::cout << "stopping condition (eq. 5.4) at dt = " << dt / units::ns << " ns: the run stops when the spread force density exceeds "
             << h * rho / (16 * dt * dt) << " dyn/cm^3\n";
-  double cells_bytes = 0;
-  for (const scene::CellTypeEntry& t : s.types) {
-    const double nd = double(t.spec.data_sites.size()), ns = double(t.spec.sample_sites.size());
-    cells_bytes += 8.0 * 6.0 * (ns + (t.spec.model.bending() ? nd : 0)) * nd;
-  }
-  const double grid_bytes = 8.0 * 40.0 * double(s.grid.cells[0]) * s.grid.cells[1] * s.grid.cells[2];
-  std::cout << "memory, roughly: fluid " << grid_bytes / 1048576 << " MiB (about 40 grid vectors), cell operators "
-            << cells_bytes / 1048576 << " MiB\n";
+  const Memory m = memory(s);
+  std::cout << "memory, roughly: fluid " << m.fluid / 1048576 << " MiB (about 40 grid vectors), cell operators "
+            << m.cells / 1048576 << " MiB; this machine has " << physical_memory() / 1073741824 << " GiB\n";
 }
 
 /// The diagnostics table's header for the step's batches.
@@ -156,6 +177,7 @@ int advance(const scene::Scene& s, sim::ImmersedBoundary& ib, const std::string&
 }
 
 int run(const scene::Scene& s, const std::string& out, double until) {
+  check_memory(s);
   std::filesystem::create_directories(out);
   std::ofstream(out + "/scene.yaml") << s.source;
   std::cout << scene::describe(s) << "building the cell types and the solver ..." << std::endl;
@@ -212,6 +234,7 @@ int main(int argc, char** argv) {
     const scene::Scene s = scene::load_scene(scene_path);
     if (*check) {
       print_check(s);
+      check_memory(s);
       return 0;
     }
     return run(s, out, until);
