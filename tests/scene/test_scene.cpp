@@ -196,6 +196,8 @@ TEST(Scene, EveryBadInputNamesItsField) {
   for (const Case& c : cases) EXPECT_EQ(field_of(replaced(ok, c.from, c.to)), c.field) << c.from << " -> " << c.to;
   // A kernel wider than the grid allows: B3 spans 4 cells, a 4-cell axis needs 3.
   EXPECT_EQ(field_of(replaced(replaced(ok, "cells: [16, 12, 16]", "cells: [16, 4, 16]"), "kernel: roma3", "kernel: bspline3")), "ib.kernel");
+  EXPECT_EQ(field_of(replaced(ok, "fluid:", "? [a, b]\n: 1\nfluid:")), "scene");  // a key that is not a name
+  EXPECT_EQ(field_of(replaced(ok, "grid: {cells: [16, 12, 16]}", "grid: {cells: [16, 12, 16], h: 1 um}")), "grid.h");
   EXPECT_EQ(field_of("domain: [1, 2"), "mutant");  // not YAML
   EXPECT_EQ(field_of(""), "mutant");               // empty
   const std::string m = testing::message_of<InputError>([&] { parse_scene(replaced(ok, "0.1 cP", "0.1 cm"), "m"); });

@@ -90,7 +90,8 @@ class Fields {
   /// Throws naming the first key that was never read.
   void finish() const {
     for (const auto& kv : node_) {
-      const std::string k = kv.first.as<std::string>();
+      if (!kv.first.IsScalar()) throw InputError(path_.empty() ? "scene" : path_, text(kv.first), "a key must be a name");
+      const std::string k = kv.first.Scalar();
       if (!read_.count(k)) throw InputError(at(k), text(kv.second), "unknown key here");
     }
   }
@@ -168,7 +169,8 @@ void read_domain(const Fields& f, Scene& s) {
 }
 
 void read_grid(const Fields& f, Scene& s) {
-  if (f.has("h") == f.has("cells")) throw InputError(f.at("h"), "", "give exactly one of grid.h and grid.cells");
+  if (f.has("h") == f.has("cells"))
+    throw InputError(f.at("h"), f.has("h") ? "(with grid.cells)" : "(missing, and no grid.cells)", "give exactly one of grid.h and grid.cells");
   for (int d = 0; d < 3; ++d) {
     int n = 0;
     if (f.has("h")) {
