@@ -12,12 +12,14 @@
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/quantity.hpp"
 #include "rbfib/core/units.hpp"
+#include "rbfib/linalg/dense.hpp"
 #include "rbfib/scene/checkpoint.hpp"
 #include "rbfib/scene/scene.hpp"
 #include "rbfib/scene/snapshot.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cmath>
@@ -67,6 +69,56 @@ void check_memory(const scene::Scene& s) {
                      "more than this machine's " + to_text(physical_memory() / 1073741824) + " GiB of memory");
 }
 
+/// A rough time per step on this machine (s): the fluid measured (three steps of the scene's
+/// grid, solvers and walls, median), the cell forces from the flops of their dense products
+/// (value and derivative jets: 2 x 6 (n_s [+ n_d with bending]) n_d x 3 [6 with dissipation]
+/// columns per cell; bending's H - H' derivatives 2 x 5 n_s n_d per cell) at a fraction of a
+/// DGEMM measured now that grows with the cells of a type, min(0.6, max(0.05, 0.08 N)) (what the
+/// products reach here with 6N columns: 9% of DGEMM for one red cell, 56% for eight,
+/// reports/bench_cells), over 0.8 (the site kernels). Interpolation and spreading, a few percent
+/// of a step, are left out.
+struct StepEstimate {
+  double fluid = 0, forces = 0;
+};
+StepEstimate estimate_step(const scene::Scene& s) {
+  StepEstimate e;
+  const auto walls = s.walls;
+  NavierStokesSolver ns(s.grid, s.fluid, s.fluid_options,
+                        [walls](int a, int d, int side, double t, double, double, double) { return walls[d][side].at(t)[a]; });
+  FluidState state = ns.zero_state(0.0);
+  ns.step(state);  // first step: workspace
+  std::vector<double> t;
+  for (int k = 0; k < 3; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    ns.step(state);
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(t.begin(), t.end());
+  e.fluid = t[1];
+  double work = 0;  // flops over the fraction of DGEMM they reach
+  for (const scene::CellTypeEntry& type : s.types) {
+    const double N = double(std::count_if(s.cells.begin(), s.cells.end(), [&](const scene::CellEntry& c) { return c.type == type.spec.name; }));
+    const double nd = double(type.spec.data_sites.size()), ns_ = double(type.spec.sample_sites.size());
+    const cells::ForceModel& m = type.spec.model;
+    double flops = 2.0 * 6.0 * (ns_ + (m.bending() ? nd : 0.0)) * nd * (m.dissipation() ? 6.0 : 3.0) * N;
+    if (m.bending()) flops += 2.0 * 5.0 * ns_ * nd * N;
+    work += flops / std::clamp(0.08 * N, 0.05, 0.6);
+  }
+  if (work > 0) {
+    const index_t n = 1000;
+    std::vector<double> h(static_cast<std::size_t>(n * n), 0.5);
+    const linalg::DeviceMatrix A = linalg::DeviceMatrix::from_host(n, n, h.data());
+    linalg::DeviceMatrix C(n, n);
+    linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, A.view(), A.view(), 0.0, C.view());
+    const auto t0 = std::chrono::steady_clock::now();
+    linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, A.view(), A.view(), 0.0, C.view());
+    synchronize();
+    const double rate = 2.0 * double(n) * n * n / std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    e.forces = work / rate / 0.8;
+  }
+  return e;
+}
+
 void print_check(const scene::Scene& s) {
   std::cout << scene::describe(s);
   const double rho = s.fluid.density, mu = s.fluid.viscosity, gdot = shear_rate(s);
@@ -89,6 +141,12 @@ void print_check(const scene::Scene& s) {
   // Eq. 5.4: dt <= (1/4) sqrt(h rho / ||f||_inf), i.e. ||f||_inf <= h rho / (16 dt^2).
   std::cout << "stopping condition (eq. 5.4) at dt = " << dt / units::ns << " ns: the run stops when the spread force density exceeds "
             << h * rho / (16 * dt * dt) << " dyn/cm^3\n";
+  const StepEstimate e = estimate_step(s);
+  const double steps = std::ceil(s.t_end / s.fluid_options.dt * (1 - 1e-12));
+  std::cout << "time per step on this machine, roughly: " << e.fluid + e.forces << " s (fluid " << e.fluid
+            << " s, measured on this grid; cell forces " << e.forces << " s, from their flops and a DGEMM measured now; "
+            << "interpolation and spreading add a few percent); to the end at dt: " << steps << " steps, about "
+            << steps * (e.fluid + e.forces) << " s\n";
   const Memory m = memory(s);
   std::cout << "memory, roughly: fluid " << m.fluid / 1048576 << " MiB (about 40 grid vectors), cell operators "
             << m.cells / 1048576 << " MiB; this machine has " << physical_memory() / 1073741824 << " GiB\n";
@@ -233,8 +291,8 @@ int main(int argc, char** argv) {
     if (*restartc) return restart(out, until);
     const scene::Scene s = scene::load_scene(scene_path);
     if (*check) {
-      print_check(s);
       check_memory(s);
+      print_check(s);
       return 0;
     }
     return run(s, out, until);

@@ -59,6 +59,7 @@ class ExampleScenes(unittest.TestCase):
             r = rbfib("check", path)
             self.assertEqual(r.returncode, 0, f"{path}: {r.stderr}")
             self.assertIn("stopping condition (eq. 5.4)", r.stdout)
+            self.assertRegex(r.stdout, r"time per step on this machine, roughly: [0-9.e+-]+ s")
 
     def test_a_short_run_writes_its_diagnostics(self):
         with tempfile.TemporaryDirectory() as out:
