@@ -189,6 +189,64 @@ int main(int argc, char** argv) {
     const surface::SphereSites eval = surface::bauer_spiral(1000);
     const std::vector<double> w = surface::rbf_sphere_weights(eval, 1).w;  // eq. 2.22, phi = r
 
+    // ---- 3. Errors between successive grids and the seed's orders (Tables 5.1, 5.2) ------------
+    // Written after every finished grid at full scale (a run stopped before r = 6 leaves the
+    // tables of the grids it has, values.grids_completed saying how many), and at the end.
+    auto write = [&](const std::vector<Run>& runs, Json results) {
+          Json tu = st::table({"r", "u_err_2", "order_2", "u_err_inf", "order_inf", "seconds"}, {"", "cm/s", "", "cm/s", "", "s"});
+      Json tx = st::table({"r", "X_err_2", "order_2", "X_err_inf", "order_inf", "seconds"}, {"", "um", "", "um", "", "s"});
+      std::vector<double> eu2, euinf, ex2, exinf;
+      for (std::size_t k = 0; k + 1 < runs.size(); ++k) {
+        const host_vector<double> a = runs[k].u_centres, b = runs[k + 1].u_centres;
+        double s2 = 0, sinf = 0;
+        for (index_t q = 0; q < nc; ++q) {
+          double e2 = 0;
+          for (int d = 0; d < 3; ++d) e2 += std::pow(a[d * nc + q] - b[d * nc + q], 2);
+          s2 += e2 / nc;
+          sinf = std::max(sinf, std::sqrt(e2));
+        }
+        eu2.push_back(std::sqrt(s2));
+        euinf.push_back(sinf);
+        const std::vector<double>&Xa = runs[k].X, &Xb = runs[k + 1].X;
+        const std::size_t n = w.size();
+        double x2 = 0, xinf = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          double e2 = 0;
+          for (int d = 0; d < 3; ++d) e2 += std::pow((Xa[d * n + i] - Xb[d * n + i]) / units::um, 2);
+          x2 += w[i] / std::cos(eval.theta[i]) * e2;  // eq. 5.2 with omega_j / cos(phi_j)
+          xinf = std::max(xinf, std::sqrt(e2));
+        }
+        ex2.push_back(std::sqrt(x2));
+        exinf.push_back(xinf);
+      }
+      Json& V = results["values"];
+      double worst_volume = 0;
+      for (const Run& run : runs) worst_volume = std::max(worst_volume, std::abs(run.volume_change));
+      for (std::size_t k = 0; k < eu2.size(); ++k) {
+        const int r = int(k) + 1;
+        auto order = [&](const std::vector<double>& e) { return k >= 1 ? Json(seed_order(e[k - 1] / e[k], r - 1)) : Json(); };
+        tu["rows"].push(Json::Array{Json(r), Json(eu2[k]), order(eu2), Json(euinf[k]), order(euinf), Json(runs[k].seconds)});
+        tx["rows"].push(Json::Array{Json(r), Json(ex2[k]), order(ex2), Json(exinf[k]), order(exinf), Json(runs[k].seconds)});
+        if (k >= 1) {
+          V["last_order_u_2"] = seed_order(eu2[k - 1] / eu2[k], r - 1);
+          V["last_order_u_inf"] = seed_order(euinf[k - 1] / euinf[k], r - 1);
+          V["last_order_X_2"] = seed_order(ex2[k - 1] / ex2[k], r - 1);
+          V["last_order_X_inf"] = seed_order(exinf[k - 1] / exinf[k], r - 1);
+        }
+      }
+      V["max_volume_change_rel"] = worst_volume;
+      Json tr = st::table({"r", "h_um", "dt_ns", "steps", "seconds", "seconds_per_step", "volume_change_rel", "commit"},
+                          {"", "um", "ns", "", "s", "s", "", ""});
+      for (const Run& run : runs)
+        tr["rows"].push(Json::Array{Json(run.r), Json(0.8 / run.r), Json(180.0 / run.r), Json(run.steps), Json(run.seconds),
+                                    Json(run.seconds / run.steps), Json(run.volume_change), Json(run.commit)});
+      results["tables"]["runs"] = tr;
+      results["tables"]["table51_velocity"] = tu;
+      results["tables"]["table52_positions"] = tx;
+      results["values"]["grids_completed"] = double(runs.size());
+      st::write_results(opt, results);
+    };
+
     // ---- 2. Runs ---------------------------------------------------------------------------------
     std::vector<Run> runs;
     for (int r = 1; r <= r_max; ++r) {
@@ -199,60 +257,10 @@ int main(int argc, char** argv) {
         if (full) save_grid(opt, run, t_end);
       }
       runs.push_back(std::move(run));
+      if (full && runs.size() >= 2) write(runs, results);
     }
 
-    // ---- 3. Errors between successive grids and the seed's orders (Tables 5.1, 5.2) ------------
-    Json tu = st::table({"r", "u_err_2", "order_2", "u_err_inf", "order_inf", "seconds"}, {"", "cm/s", "", "cm/s", "", "s"});
-    Json tx = st::table({"r", "X_err_2", "order_2", "X_err_inf", "order_inf", "seconds"}, {"", "um", "", "um", "", "s"});
-    std::vector<double> eu2, euinf, ex2, exinf;
-    for (std::size_t k = 0; k + 1 < runs.size(); ++k) {
-      const host_vector<double> a = runs[k].u_centres, b = runs[k + 1].u_centres;
-      double s2 = 0, sinf = 0;
-      for (index_t q = 0; q < nc; ++q) {
-        double e2 = 0;
-        for (int d = 0; d < 3; ++d) e2 += std::pow(a[d * nc + q] - b[d * nc + q], 2);
-        s2 += e2 / nc;
-        sinf = std::max(sinf, std::sqrt(e2));
-      }
-      eu2.push_back(std::sqrt(s2));
-      euinf.push_back(sinf);
-      const std::vector<double>&Xa = runs[k].X, &Xb = runs[k + 1].X;
-      const std::size_t n = w.size();
-      double x2 = 0, xinf = 0;
-      for (std::size_t i = 0; i < n; ++i) {
-        double e2 = 0;
-        for (int d = 0; d < 3; ++d) e2 += std::pow((Xa[d * n + i] - Xb[d * n + i]) / units::um, 2);
-        x2 += w[i] / std::cos(eval.theta[i]) * e2;  // eq. 5.2 with omega_j / cos(phi_j)
-        xinf = std::max(xinf, std::sqrt(e2));
-      }
-      ex2.push_back(std::sqrt(x2));
-      exinf.push_back(xinf);
-    }
-    Json& V = results["values"];
-    double worst_volume = 0;
-    for (const Run& run : runs) worst_volume = std::max(worst_volume, std::abs(run.volume_change));
-    for (std::size_t k = 0; k < eu2.size(); ++k) {
-      const int r = int(k) + 1;
-      auto order = [&](const std::vector<double>& e) { return k >= 1 ? Json(seed_order(e[k - 1] / e[k], r - 1)) : Json(); };
-      tu["rows"].push(Json::Array{Json(r), Json(eu2[k]), order(eu2), Json(euinf[k]), order(euinf), Json(runs[k].seconds)});
-      tx["rows"].push(Json::Array{Json(r), Json(ex2[k]), order(ex2), Json(exinf[k]), order(exinf), Json(runs[k].seconds)});
-      if (k >= 1) {
-        V["last_order_u_2"] = seed_order(eu2[k - 1] / eu2[k], r - 1);
-        V["last_order_u_inf"] = seed_order(euinf[k - 1] / euinf[k], r - 1);
-        V["last_order_X_2"] = seed_order(ex2[k - 1] / ex2[k], r - 1);
-        V["last_order_X_inf"] = seed_order(exinf[k - 1] / exinf[k], r - 1);
-      }
-    }
-    V["max_volume_change_rel"] = worst_volume;
-    Json tr = st::table({"r", "h_um", "dt_ns", "steps", "seconds", "seconds_per_step", "volume_change_rel", "commit"},
-                        {"", "um", "ns", "", "s", "s", "", ""});
-    for (const Run& run : runs)
-      tr["rows"].push(Json::Array{Json(run.r), Json(0.8 / run.r), Json(180.0 / run.r), Json(run.steps), Json(run.seconds),
-                                  Json(run.seconds / run.steps), Json(run.volume_change), Json(run.commit)});
-    results["tables"]["runs"] = tr;
-    results["tables"]["table51_velocity"] = tu;
-    results["tables"]["table52_positions"] = tx;
-    st::write_results(opt, results);
+    write(runs, results);
     return 0;
   });
 }
