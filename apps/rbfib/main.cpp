@@ -71,8 +71,7 @@ void check_memory(const scene::Scene& s) {
 
 /// A rough time per step on this machine (s): the fluid measured (three steps of the scene's
 /// grid, solvers and walls, median), the cell forces from the flops of their dense products
-/// (value and derivative jets: 2 x 6 (n_s [+ n_d with bending]) n_d x 3 [6 with dissipation]
-/// columns per cell; bending's H - H' derivatives 2 x 5 n_s n_d per cell) at a fraction of a
+/// (cells::product_flops) at a fraction of a
 /// DGEMM measured now that grows with the cells of a type, min(0.6, max(0.05, 0.08 N)) (what the
 /// products reach here with 6N columns: 9% of DGEMM for one red cell, 56% for eight,
 /// reports/bench_cells), over 0.8 (the site kernels). Interpolation and spreading, a few percent
@@ -82,9 +81,7 @@ struct StepEstimate {
 };
 StepEstimate estimate_step(const scene::Scene& s) {
   StepEstimate e;
-  const auto walls = s.walls;
-  NavierStokesSolver ns(s.grid, s.fluid, s.fluid_options,
-                        [walls](int a, int d, int side, double t, double, double, double) { return walls[d][side].at(t)[a]; });
+  NavierStokesSolver ns(s.grid, s.fluid, s.fluid_options, scene::boundary_velocity(s));
   FluidState state = ns.zero_state(0.0);
   ns.step(state);  // first step: workspace
   std::vector<double> t;
@@ -98,11 +95,7 @@ StepEstimate estimate_step(const scene::Scene& s) {
   double work = 0;  // flops over the fraction of DGEMM they reach
   for (const scene::CellTypeEntry& type : s.types) {
     const double N = double(std::count_if(s.cells.begin(), s.cells.end(), [&](const scene::CellEntry& c) { return c.type == type.spec.name; }));
-    const double nd = double(type.spec.data_sites.size()), ns_ = double(type.spec.sample_sites.size());
-    const cells::ForceModel& m = type.spec.model;
-    double flops = 2.0 * 6.0 * (ns_ + (m.bending() ? nd : 0.0)) * nd * (m.dissipation() ? 6.0 : 3.0) * N;
-    if (m.bending()) flops += 2.0 * 5.0 * ns_ * nd * N;
-    work += flops / std::clamp(0.08 * N, 0.05, 0.6);
+    work += cells::product_flops(type.spec, index_t(N)).total() / std::clamp(0.08 * N, 0.05, 0.6);
   }
   if (work > 0) {
     const index_t n = 1000;

@@ -186,7 +186,7 @@ int main(int argc, char** argv) {
       if (type->model().dissipation()) set_velocities(b);
       double total = 0;
       const ForceTimings t = st::median_force_timings(b, repeats, total);
-      const st::ProductFlops f = st::product_flops(*type, b.size());
+      const ProductFlops f = product_flops(type->spec(), b.size());
       const double rate = (f.jets + f.bending) / t.products();
       const double roofline = std::max((f.jets + f.bending) / ceiling, f.bytes / bandwidth);
       // Kernels: the site launch, bending's H kernel and the reductions.

@@ -315,7 +315,7 @@ int main(int argc, char** argv) {
     for (index_t b = 0; b < ib.batches(); ++b) {
       double total = 0;
       const cells::ForceTimings t = st::median_force_timings(ib.batch(b), repeats, total);
-      const st::ProductFlops pf = st::product_flops(ib.batch(b).type(), ib.batch(b).size());
+      const cells::ProductFlops pf = cells::product_flops(ib.batch(b).type().spec(), ib.batch(b).size());
       flops += pf.total();
       product_seconds += t.products();
       fc["rows"].push(Json::Array{Json(ib.batch(b).type().name()), Json(double(ib.batch(b).size())), Json(total), Json(t.products()),

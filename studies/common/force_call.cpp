@@ -22,19 +22,6 @@ double dgemm_rate(index_t n, int repeats) {
   return 2.0 * double(n) * n * n / t;
 }
 
-ProductFlops product_flops(const cells::CellType& t, index_t N) {
-  const double nd = double(t.n_data()), ns = double(t.n_sample()), nj = double(t.jet_sites());
-  ProductFlops f;
-  const double cols = (t.model().dissipation() ? 6.0 : 3.0) * N;
-  f.jets = 2.0 * 6.0 * nj * nd * cols;
-  f.bytes = 8.0 * 6.0 * nj * nd;
-  if (t.model().bending()) {
-    f.bending = 2.0 * 5.0 * ns * nd * N;
-    f.bytes += 8.0 * 5.0 * ns * nd;
-  }
-  return f;
-}
-
 cells::ForceTimings median_force_timings(const cells::Batch& b, int repeats, double& total) {
   cells::CellForces out;
   cells::compute_forces(b, out);

@@ -161,4 +161,18 @@ std::string CellType::describe() const {
          " um^3; device memory " + to_text(double(bytes()) / 1048576.0) + " MiB";
 }
 
+ProductFlops product_flops(const CellTypeSpec& spec, index_t N) {
+  const double nd = double(spec.data_sites.size()), ns = double(spec.sample_sites.size());
+  const double nj = ns + (spec.model.bending() ? nd : 0.0);  // the operators' rows (CellType::jet_sites)
+  ProductFlops f;
+  const double cols = (spec.model.dissipation() ? 6.0 : 3.0) * double(N);
+  f.jets = 2.0 * 6.0 * nj * nd * cols;
+  f.bytes = 8.0 * 6.0 * nj * nd;
+  if (spec.model.bending()) {
+    f.bending = 2.0 * 5.0 * ns * nd * double(N);
+    f.bytes += 8.0 * 5.0 * ns * nd;
+  }
+  return f;
+}
+
 }  // namespace rbfib::cells

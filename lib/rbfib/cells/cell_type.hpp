@@ -59,6 +59,18 @@ struct CellTypeSpec {
   ForceModel model;
 };
 
+/// Flops of the dense products of one force call for N cells of a type, as performed: the jets
+/// of positions (and, with dissipation, velocities) at the sample and, with bending, the data
+/// sites (one product, 2 x 6 (n_s [+ n_d]) n_d x 3 [6] N), and the derivatives of H - H' at the
+/// sample sites (2 x 5 n_s n_d x N); and the operator bytes they stream (each product reads its
+/// operator once).
+struct ProductFlops {
+  double jets = 0, bending = 0;
+  double bytes = 0;
+  double total() const { return jets + bending; }
+};
+ProductFlops product_flops(const CellTypeSpec& spec, index_t N);
+
 class CellType {
  public:
   /// Builds operators, reference jets and weights. Throws InputError naming the field for bad

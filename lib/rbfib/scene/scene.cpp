@@ -81,10 +81,29 @@ class Fields {
   }
   long integer(const std::string& key, long lo, long hi) const {
     const std::string v = scalar(get(key), at(key));
+    const long x = to_integer(v, at(key));
+    if (x < lo || x > hi) throw InputError(at(key), v, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return x;
+  }
+  /// A list of `count` integers, each in [lo, hi].
+  std::vector<long> integers(const std::string& key, std::size_t count, long lo, long hi) const {
+    const YAML::Node n = get(key);
+    if (!n.IsSequence() || n.size() != count)
+      throw InputError(at(key), text(n), "expected a list of " + std::to_string(count) + " integers");
+    std::vector<long> out;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::string field = at(key) + "[" + std::to_string(i) + "]";
+      const std::string v = scalar(n[i], field);
+      const long x = to_integer(v, field);
+      if (x < lo || x > hi) throw InputError(field, v, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      out.push_back(x);
+    }
+    return out;
+  }
+  static long to_integer(const std::string& v, const std::string& field) {
     char* end = nullptr;
     const long x = std::strtol(v.c_str(), &end, 10);
-    if (end == v.c_str() || *end != '\0') throw InputError(at(key), v, "expected an integer");
-    if (x < lo || x > hi) throw InputError(at(key), v, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    if (end == v.c_str() || *end != '\0') throw InputError(field, v, "expected an integer");
     return x;
   }
   /// Throws naming the first key that was never read.
@@ -181,13 +200,7 @@ void read_grid(const Fields& f, Scene& s) {
         throw InputError(f.at("h"), to_text(h / units::um) + " um",
                          "must divide the box: " + std::string(axis_name[d]) + " length / h = " + to_text(c) + " is not an integer");
     } else {
-      const YAML::Node c = f.get("cells");
-      if (!c.IsSequence() || c.size() != 3) throw InputError(f.at("cells"), Fields::text(c), "expected a list of 3 integers");
-      const std::string field = f.at("cells") + "[" + std::to_string(d) + "]";
-      const std::string v = Fields::scalar(c[d], field);
-      char* end = nullptr;
-      n = int(std::strtol(v.c_str(), &end, 10));
-      if (end == v.c_str() || *end != '\0') throw InputError(field, v, "expected an integer");
+      n = int(f.integers("cells", 3, -1000000, 1000000)[d]);
     }
     if (n < MacGrid::min_cells || n > 4096)
       throw InputError(f.at(f.has("h") ? "h" : "cells"), to_text(n) + " cells along " + axis_name[d],
@@ -344,16 +357,8 @@ sim::TetheredPoints read_points(const Fields& f, const Scene& s) {
   const double at = plane.quantity(axis_name[normal], "um");
   if (!(at >= 0 && at <= s.grid.length[normal]))
     throw InputError(plane.at(axis_name[normal]), to_text(at / units::um) + " um", "lies outside the box");
-  const YAML::Node counts = plane.get("points");
-  if (!counts.IsSequence() || counts.size() != 2) throw InputError(plane.at("points"), Fields::text(counts), "expected [n1, n2]");
-  int n[2];
-  for (int i = 0; i < 2; ++i) {
-    const std::string field = plane.at("points") + "[" + std::to_string(i) + "]";
-    const std::string v = Fields::scalar(counts[i], field);
-    char* end = nullptr;
-    n[i] = int(std::strtol(v.c_str(), &end, 10));
-    if (end == v.c_str() || *end != '\0' || n[i] < 1 || n[i] > 4096) throw InputError(field, v, "expected an integer in [1, 4096]");
-  }
+  const std::vector<long> counts = plane.integers("points", 2, 1, 4096);
+  const int n[2] = {int(counts[0]), int(counts[1])};
   plane.finish();
   // A lattice over the two other axes, cell-centred: points (i + 1/2) L / n.
   const int a = (normal + 1) % 3, b = (normal + 2) % 3;
@@ -439,10 +444,14 @@ Scene load_scene(const std::string& path) {
   return parse_scene(text.str(), name);
 }
 
-sim::ImmersedBoundary build(const Scene& s) {
+BoundaryVelocity boundary_velocity(const Scene& s) {
   const auto walls = s.walls;
-  BoundaryVelocity boundary = [walls](int a, int d, int side, double t, double, double, double) { return walls[d][side].at(t)[a]; };
-  sim::ImmersedBoundary ib(s.grid, s.fluid, s.fluid_options, boundary, s.ib);
+  return [walls](int a, int d, int side, double t, double, double, double) { return walls[d][side].at(t)[a]; };
+}
+
+sim::ImmersedBoundary build(const Scene& s) {
+  const auto& walls = s.walls;
+  sim::ImmersedBoundary ib(s.grid, s.fluid, s.fluid_options, boundary_velocity(s), s.ib);
   if (s.initial_shear) {
     // The steady flow between the walls: linear in the wall-normal coordinate for each wall axis
     // (one wall axis at most carries a shear; with several, their profiles add).

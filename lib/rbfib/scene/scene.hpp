@@ -66,6 +66,9 @@ Scene parse_scene(const std::string& yaml, const std::string& origin);
 /// Reads a scene file.
 Scene load_scene(const std::string& path);
 
+/// The walls' velocities as the fluid solver's boundary data (time-dependent walls included).
+BoundaryVelocity boundary_velocity(const Scene& scene);
+
 /// Builds the coupled step of a scene: the fluid solver with its walls, the flow at t = 0, one
 /// batch per cell type with its cells, the point sets. Builds each type's operators (seconds to
 /// minutes for large types).
