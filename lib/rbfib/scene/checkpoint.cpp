@@ -43,10 +43,8 @@ class Reader {
   }
   template <class T>
   T attribute(hid_t where, const char* name, hid_t type) const {
-    if (H5Aexists(where, name) <= 0) fail(std::string("attribute ") + name);
-    Id a{H5Aopen(where, name, H5P_DEFAULT), H5Aclose};
     T v{};
-    if (H5Aread(a, type, &v) < 0) fail(std::string("attribute ") + name);
+    if (!h5::read_attribute(where, name, type, &v)) fail(std::string("attribute ") + name);
     return v;
   }
   std::string string_attribute(hid_t where, const char* name) const {

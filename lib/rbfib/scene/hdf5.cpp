@@ -73,6 +73,12 @@ void attribute(hid_t where, const std::string& name, const std::string& value) {
   scalar_attribute(where, name, type, value.c_str());
 }
 
+bool read_attribute(hid_t where, const std::string& name, hid_t type, void* value) {
+  if (H5Aexists(where, name.c_str()) <= 0) return false;
+  Id a(H5Aopen(where, name.c_str(), H5P_DEFAULT), H5Aclose);
+  return a.valid() && H5Aread(a, type, value) >= 0;
+}
+
 void flush_and_sync(hid_t file, const std::string& path) {
   check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flushing " + path);
   fsync_path(path, O_RDONLY);

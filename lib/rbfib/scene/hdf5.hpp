@@ -43,6 +43,10 @@ void attribute(hid_t where, const std::string& name, long value);
 void attribute(hid_t where, const std::string& name, int value);
 void attribute(hid_t where, const std::string& name, const std::string& value);
 
+/// Reads a scalar attribute of the given type into value; false if it is missing or unreadable
+/// (checked first, so HDF5 prints no error stack).
+bool read_attribute(hid_t where, const std::string& name, hid_t type, void* value);
+
 /// Flushes the file, then fsyncs path.
 void flush_and_sync(hid_t file, const std::string& path);
 /// Renames tmp over path and fsyncs the directory: the atomic replacement of a file.

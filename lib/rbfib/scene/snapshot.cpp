@@ -79,14 +79,13 @@ SnapshotWriter::SnapshotWriter(const std::string& dir, const sim::ImmersedBounda
 
 void SnapshotWriter::resume(double t) {
   std::vector<std::pair<double, std::string>> found;
+  const std::regex snapshot_name("snapshot_[0-9]+\\.h5");
   for (const auto& e : std::filesystem::directory_iterator(dir_ + "/snapshots")) {
     const std::string name = e.path().filename().string();
-    if (!std::regex_match(name, std::regex("snapshot_[0-9]+\\.h5"))) continue;
+    if (!std::regex_match(name, snapshot_name)) continue;
     h5::Id f(H5Fopen(e.path().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-    if (!f.valid()) continue;
     double ts = 0;
-    h5::Id a(H5Aopen(f, "t", H5P_DEFAULT), H5Aclose);
-    if (!a.valid() || H5Aread(a, H5T_NATIVE_DOUBLE, &ts) < 0) continue;
+    if (!f.valid() || !h5::read_attribute(f, "t", H5T_NATIVE_DOUBLE, &ts)) continue;
     if (ts <= t * (1 + 1e-12)) found.push_back({ts, "snapshots/" + name});
   }
   std::sort(found.begin(), found.end());
