@@ -93,6 +93,8 @@ def figure(fig_spec, tabs, out_dir):
         ax.set_xscale("log")
     if fig_spec.get("logy"):
         ax.set_yscale("log")
+    if fig_spec.get("aspect") == "equal":
+        ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(fig_spec.get("xlabel", fig_spec["x"]))
     ax.set_ylabel(fig_spec.get("ylabel", ", ".join(ys)))
     ax.set_title(fig_spec.get("title", fig_spec["id"]), fontsize=10)
@@ -113,6 +115,7 @@ def render(meta, ref, results, outcome, out_dir, run_info):
     passed = sum(c["status"] == "PASS" for c in outcome)
     failed = sum(c["status"] == "FAIL" for c in outcome)
     differs = sum(c["status"] == "DIFFERS" for c in outcome)
+    not_run = sum(c["status"] == "NOT RUN" for c in outcome)
     L = [f"# {ref.get('title', meta['title'])}", ""]
     L.append(f"Study `{meta['name']}` ({meta['chapter']}): reproduces {', '.join(meta['reproduces'])}. "
              f"Source: {ref['source']}.")
@@ -120,7 +123,8 @@ def render(meta, ref, results, outcome, out_dir, run_info):
     L.append(meta["description"].strip())
     L.append("")
     L.append(f"**Scale: {results.get('scale', '?')}.** Checks: **{passed} passed, {failed} failed**"
-             + (f", {differs} known difference{'s' if differs > 1 else ''} from the paper (see below)." if differs else "."))
+             + (f", {differs} known difference{'s' if differs > 1 else ''} from the paper (see below)" if differs else "")
+             + (f", {not_run} evaluated at another scale only." if not_run else "."))
     L.append("")
     L.append(f"Ran on {prov.get('cpu', '?')} ({prov.get('threads', '?')} threads of {prov.get('hardware_threads', '?')}), "
              f"backend {prov.get('backend', '?')}, {prov.get('compiler', '?')}, commit {run_info.get('commit', '?')}, "

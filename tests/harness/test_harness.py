@@ -55,6 +55,13 @@ class Checks(unittest.TestCase):
         self.assertEqual(run_checks(dict(c, max=3.0))[0]["status"], "PASS")
         self.assertEqual(run_checks(dict(c, known_difference=None))[0]["status"], "FAIL")
 
+    def test_check_limited_to_a_scale(self):
+        c = {"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 2.9, "scales": ["full"]}
+        quick = checks.evaluate({"checks": [c]}, dict(RESULTS, scale="quick"))[0]
+        self.assertEqual(quick["status"], "NOT RUN")
+        full = checks.evaluate({"checks": [c]}, dict(RESULTS, scale="full"))[0]
+        self.assertEqual(full["status"], "FAIL")
+
     def test_bound_and_missing_data_fail(self):
         self.assertTrue(run_checks({"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 3.0})[0]["passed"])
         self.assertFalse(run_checks({"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 2.9})[0]["passed"])
