@@ -260,8 +260,8 @@ int main(int argc, char** argv) {
     sim::IbOptions io;
     io.kernel = "bspline3";
     // dt = 25 ns, half the seed's 50 ns: at 50 ns the endothelium with the seed's k and eta is
-    // unstable in this coupling (its force grows about 15% a step); the step's cost does not
-    // depend on dt.
+    // unstable in this coupling at 0.1 cP (its force grows about 15% a step; at 1 cP it is
+    // stable); the step's cost does not depend on dt.
     sim::ImmersedBoundary ib = sheared(g2, 25 * units::ns, 0.0, io);
     t0 = std::chrono::steady_clock::now();
     const auto rbc = cells::red_cell(rbc_nd, rbc_ns);

@@ -26,7 +26,9 @@
 // the spring at X* = X^n + dt U^n the explicit damping would be eta + k dt, and the seed's
 // endothelium (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm, "as large as possible for the chosen
 // spatial and temporal step size", h = 0.2 um, dt = 50 ns) is then unstable: a flat sheet of
-// 16,000 points in shear 1000/s blows up within 20 steps, while eta alone is stable.
+// 16,000 points in shear 1000/s blows up within 20 steps, while eta alone is stable. Even at
+// X^n the explicit damping's gain scales as eta / mu: in plasma of 0.1 cP (Sec. 2.1) that sheet
+// grows at 50 ns; at 1 cP (the seed's code) it is stable (reference/chapter4_cells.yaml).
 // Before the fluid step the stopping condition of eq. 5.4 is checked: the step is refused when
 //   dt > (1/4) sqrt(h rho / ||f||_inf),
 // and any failure (that condition, a degenerate or inverted cell, a non-finite force or velocity)
