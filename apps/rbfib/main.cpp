@@ -114,6 +114,10 @@ StepEstimate estimate_step(const scene::Scene& s) {
 
 void print_check(const scene::Scene& s) {
   std::cout << scene::describe(s);
+  const std::vector<std::string> near = scene::check_contacts(s);  // throws InputError for overlaps
+  std::cout << "contacts: no cell overlaps another cell, a wall or a point set; "
+            << (near.empty() ? "every pair is at least 2h apart\n" : "closer than 2h:\n");
+  for (const std::string& line : near) std::cout << "  " << line << "\n";
   const double rho = s.fluid.density, mu = s.fluid.viscosity, gdot = shear_rate(s);
   const double h = std::min({s.grid.h(0), s.grid.h(1), s.grid.h(2)}), dt = s.fluid_options.dt;
   std::cout << "dimensionless groups (shear rate " << gdot << " 1/s between the walls):\n";

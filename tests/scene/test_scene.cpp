@@ -277,5 +277,43 @@ TEST(Checkpoint, RestartContinuesBitForBit) {
   std::filesystem::remove_all(dir);
 }
 
+
+std::string with(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(Contacts, OverlappingCellsAreRefusedPeriodicImagesIncluded) {
+  const std::string two = std::string(sphere_scene) + "  - {type: sphere, center: [12 um, 8 um, 8 um]}\n";
+  // Spheres of radius 3 um (the first stretched by 1.1 along z) 4 um apart: they overlap.
+  const std::string overlap = testing::message_of<InputError>([&] { check_contacts(parse_scene(two, "two")); });
+  EXPECT_NE(overlap.find("overlap"), std::string::npos) << overlap;
+  EXPECT_NE(overlap.find("cells["), std::string::npos) << overlap;
+  // Across the periodic boundary: x = 14 um is 3 um from x = 1 um's image at 17 um.
+  const std::string wrap = with(with(two, "center: [8 um, 8 um, 8 um]", "center: [1 um, 8 um, 8 um]"), "[12 um, 8 um, 8 um]",
+                                "[14 um, 8 um, 8 um]");
+  EXPECT_NE(testing::message_of<InputError>([&] { check_contacts(parse_scene(wrap, "wrap")); }).find("overlap"), std::string::npos);
+  // 6.6 um apart: distinct (a gap of about 0.6 um), but closer than 2h = 2 um: one line says so.
+  const std::string near = with(two, "[12 um, 8 um, 8 um]", "[14.6 um, 8 um, 8 um]");
+  std::vector<std::string> lines;
+  EXPECT_EQ(testing::message_of<InputError>([&] { lines = check_contacts(parse_scene(near, "near")); }), "");
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NE(lines[0].find("cells[0] and cells[1]"), std::string::npos) << lines[0];
+  // 8 um apart in a 16 um box: 2 um gaps on both sides, no line.
+  const std::string far = with(two, "[12 um, 8 um, 8 um]", "[16 um, 8 um, 8 um]");
+  EXPECT_TRUE(check_contacts(parse_scene(with(far, "stretch: [1, 0.909090909, 1.1]", "stretch: [1, 1, 1]"), "far")).empty());
+}
+
+TEST(Contacts, ACellAroundTetheredPointsIsRefused) {
+  const std::string ok = channel_scene;
+  EXPECT_EQ(testing::message_of<InputError>([&] { check_contacts(parse_scene(ok, "ok")); }), "");
+  // Lying flat on the endothelium's plane y = 1 um: the plane's points are inside it.
+  const std::string around = with(ok, "center: [4 um, 3 um, 4 um]", "center: [4 um, 1.2 um, 4 um]");
+  const std::string a = testing::message_of<InputError>([&] { check_contacts(parse_scene(around, "around")); });
+  EXPECT_NE(a.find("encloses point"), std::string::npos) << a;
+  EXPECT_NE(a.find("tethered_points[0]"), std::string::npos) << a;
+}
+
 }  // namespace
 }  // namespace rbfib::scene

@@ -5,6 +5,7 @@
 #include "rbfib/core/units.hpp"
 #include "rbfib/grid/box.hpp"
 #include "rbfib/ib/kernels.hpp"
+#include "rbfib/surface/contact.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -18,6 +19,18 @@
 namespace rbfib::scene {
 
 namespace {
+
+/// A type's reference shape at its data sites, n x 3 column-major (cm), without building it.
+std::vector<double> reference_sites(const CellTypeEntry& t) {
+  const surface::SphereSites& z = t.spec.data_sites;
+  std::vector<double> r(static_cast<std::size_t>(3 * z.size()));
+  for (index_t i = 0; i < z.size(); ++i) {
+    double x[3];
+    t.spec.shape.position(z.lambda[i], z.theta[i], x);
+    for (int d = 0; d < 3; ++d) r[std::size_t(d * z.size() + i)] = x[d];
+  }
+  return r;
+}
 
 const char* axis_name[3] = {"x", "y", "z"};
 
@@ -321,15 +334,8 @@ CellEntry read_cell(const Fields& f, const Scene& s) {
   if (f.has("force")) c.force = f.triple("force", "dyn");
   // The placed reference shape at the type's data sites must lie between the walls.
   const CellTypeEntry& t = *std::find_if(s.types.begin(), s.types.end(), [&](const CellTypeEntry& e) { return e.spec.name == c.type; });
-  const surface::SphereSites& sites = t.spec.data_sites;
-  const index_t n = sites.size();
-  std::vector<double> reference(static_cast<std::size_t>(3 * n));
-  for (index_t i = 0; i < n; ++i) {
-    double x[3];
-    t.spec.shape.position(sites.lambda[i], sites.theta[i], x);
-    for (int d = 0; d < 3; ++d) reference[d * n + i] = x[d];
-  }
-  const std::vector<double> X = cells::placed(reference, n, c.placement, f.path());
+  const index_t n = t.spec.data_sites.size();
+  const std::vector<double> X = cells::placed(reference_sites(t), n, c.placement, f.path());
   for (int d = 0; d < 3; ++d) {
     if (s.grid.periodic(d)) continue;
     for (index_t i = 0; i < n; ++i)
@@ -449,7 +455,112 @@ BoundaryVelocity boundary_velocity(const Scene& s) {
   return [walls](int a, int d, int side, double t, double, double, double) { return walls[d][side].at(t)[a]; };
 }
 
+std::vector<std::string> check_contacts(const Scene& s) {
+  struct Placed {
+    std::vector<double> X;  // data sites, n x 3
+    index_t n = 0;
+    const std::vector<surface::Triangle>* tris = nullptr;
+    std::array<double, 3> center{};
+    double radius = 0;  // of the bounding sphere about center
+  };
+  std::map<std::string, std::vector<surface::Triangle>> tris;
+  std::map<std::string, std::vector<double>> reference;
+  for (const CellTypeEntry& t : s.types) {
+    reference[t.spec.name] = reference_sites(t);
+    tris[t.spec.name] = surface::sphere_triangulation(t.spec.data_sites);
+  }
+  const MacGrid& g = s.grid;
+  auto um = [](double x) {
+    std::ostringstream o;
+    o.precision(4);
+    o << x / units::um << " um";
+    return o.str();
+  };
+  std::vector<Placed> cells;
+  for (std::size_t c = 0; c < s.cells.size(); ++c) {
+    const std::string who = "cells[" + std::to_string(c) + "]";
+    Placed p;
+    const std::vector<double>& ref = reference.at(s.cells[c].type);
+    p.n = index_t(ref.size() / 3);
+    p.X = cells::placed(ref, p.n, s.cells[c].placement, who);
+    p.tris = &tris.at(s.cells[c].type);
+    p.center = s.cells[c].placement.center;
+    for (index_t i = 0; i < p.n; ++i) {  // (the reader has checked that the cell lies between the walls)
+      double r2 = 0;
+      for (int d = 0; d < 3; ++d) r2 += std::pow(p.X[std::size_t(d * p.n + i)] - p.center[d], 2);
+      p.radius = std::max(p.radius, std::sqrt(r2));
+    }
+    cells.push_back(std::move(p));
+  }
+  // The shift of b that brings its centre nearest a's (periodic axes).
+  auto nearest_image = [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    std::array<double, 3> shift{0, 0, 0};
+    for (int d = 0; d < 3; ++d)
+      if (g.periodic(d)) shift[d] = g.length[d] * std::round((a[d] - b[d]) / g.length[d]);
+    return shift;
+  };
+  auto inside = [](const Placed& c, const std::array<double, 3>& x) {
+    return std::abs(surface::winding_number(c.X, c.n, *c.tris, x)) > 0.5;
+  };
+  const double hmin = std::min({g.h(0), g.h(1), g.h(2)});
+  std::vector<std::string> near;
+  for (std::size_t a = 0; a < cells.size(); ++a)
+    for (std::size_t b = a + 1; b < cells.size(); ++b) {
+      const Placed &A = cells[a], &B = cells[b];
+      const std::array<double, 3> shift = nearest_image(A.center, B.center);
+      double dc = 0;
+      for (int d = 0; d < 3; ++d) dc += std::pow(A.center[d] - B.center[d] - shift[d], 2);
+      if (std::sqrt(dc) > A.radius + B.radius + 2 * hmin) continue;
+      const std::string pair = "cells[" + std::to_string(a) + "] and cells[" + std::to_string(b) + "]";
+      // A's sites against B's image (B + shift), then the image's sites against A.
+      for (int side = 0; side < 2; ++side) {
+        const Placed &P = side ? B : A, &Q = side ? A : B;
+        const double sign = side ? 1 : -1;
+        for (index_t i = 0; i < P.n; ++i) {
+          std::array<double, 3> x;
+          for (int d = 0; d < 3; ++d) x[d] = P.X[std::size_t(d * P.n + i)] + sign * shift[d];
+          if (inside(Q, x))
+            throw InputError("cells[" + std::to_string(side ? b : a) + "]", "its data site " + std::to_string(i),
+                             "lies inside cells[" + std::to_string(side ? a : b) + "]: " + pair + " overlap");
+        }
+      }
+      const surface::Closest c = surface::closest_points(A.X, A.n, B.X, B.n, shift);
+      if (c.distance < 2 * hmin)
+        near.push_back(pair + " come within " + um(c.distance) + " of each other (less than 2h = " + um(2 * hmin) +
+                       "): their kernels overlap and their forces mix");
+    }
+  for (std::size_t k = 0; k < s.point_sets.size(); ++k) {
+    const sim::TetheredPoints& P = s.point_sets[k];
+    const index_t n = index_t(P.X.size() / 3);
+    const host_vector<double> X(P.X.begin(), P.X.end());
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const Placed& C = cells[c];
+      double closest = INFINITY;
+      for (index_t i = 0; i < n; ++i) {
+        std::array<double, 3> x{X[std::size_t(i)], X[std::size_t(n + i)], X[std::size_t(2 * n + i)]};
+        const std::array<double, 3> shift = nearest_image(C.center, x);
+        double r2 = 0;
+        for (int d = 0; d < 3; ++d) x[d] += shift[d], r2 += std::pow(x[d] - C.center[d], 2);
+        if (std::sqrt(r2) > C.radius + 2 * hmin) continue;
+        if (inside(C, x))
+          throw InputError("cells[" + std::to_string(c) + "]", s.cells[c].type,
+                           "encloses point " + std::to_string(i) + " of tethered_points[" + std::to_string(k) + "] ('" + P.name + "')");
+        for (index_t j = 0; j < C.n; ++j) {
+          double e2 = 0;
+          for (int d = 0; d < 3; ++d) e2 += std::pow(x[d] - C.X[std::size_t(d * C.n + j)], 2);
+          closest = std::min(closest, std::sqrt(e2));
+        }
+      }
+      if (closest < 2 * hmin)
+        near.push_back("cells[" + std::to_string(c) + "] comes within " + um(closest) + " of tethered_points[" + std::to_string(k) +
+                       "] ('" + P.name + "') (less than 2h = " + um(2 * hmin) + ")");
+    }
+  }
+  return near;
+}
+
 sim::ImmersedBoundary build(const Scene& s) {
+  check_contacts(s);
   const auto& walls = s.walls;
   sim::ImmersedBoundary ib(s.grid, s.fluid, s.fluid_options, boundary_velocity(s), s.ib);
   if (s.initial_shear) {
