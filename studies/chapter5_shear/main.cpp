@@ -210,15 +210,18 @@ Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, i
   };
   auto take_outline = [&] {
     if (const int k = outline_index(ib.step_count()); k >= 0) {
-        const std::vector<double> X = ib.batch(0).positions_host();
-        const Sample& sm = r.samples.back();
-        std::ofstream f(outline_file(k));
-        f.precision(17);
-        f << ib.time() << '\n';
-        for (long i = 0; i < n; ++i) f << X[std::size_t(2 * n + i)] - sm.shape.center[2] << ' ' << X[std::size_t(n + i)] - sm.shape.center[1] << '\n';
-      }
+      const std::vector<double> X = ib.batch(0).positions_host();
+      const Sample& sm = r.samples.back();
+      std::ofstream f(outline_file(k));
+      f.precision(17);
+      f << ib.time() << '\n';
+      for (long i = 0; i < n; ++i) f << X[std::size_t(2 * n + i)] - sm.shape.center[2] << ' ' << X[std::size_t(n + i)] - sm.shape.center[1] << '\n';
+    }
   };
-  if (ib.step_count() == 0) take_outline();
+  if (ib.step_count() == 0) {  // a fresh start: no outline of an earlier run may remain
+    for (int k = 1; k < 4; ++k) std::filesystem::remove(outline_file(k));
+    take_outline();
+  }
   auto t0 = std::chrono::steady_clock::now(), last_log = t0, last_save = t0;
   try {
     while (ib.step_count() < total) {
