@@ -71,6 +71,26 @@ class ExampleScenes(unittest.TestCase):
             self.assertTrue(rows[0].startswith("step,t_s,dt_s"))
             self.assertTrue(os.path.exists(os.path.join(out, "scene.yaml")))
 
+    def test_overlapping_cells_and_a_cell_through_a_wall_exit_2(self):
+        with open(os.path.join(ROOT, "scenes", "two_red_cells.yaml")) as f:
+            text = f.read()
+        cases = {
+            "overlap": (text.replace("center: [11 um, 8 um, 11 um]", "center: [6 um, 8 um, 6 um]"), "overlap"),
+            "wall": (text.replace("center: [5 um, 8 um, 5 um]", "center: [5 um, 2 um, 5 um]"), "reaches through a wall"),
+        }
+        with tempfile.TemporaryDirectory() as d:
+            for name, (scene, why) in cases.items():
+                self.assertNotEqual(scene, text, name)
+                path = os.path.join(d, name + ".yaml")
+                with open(path, "w") as f:
+                    f.write(scene)
+                r = rbfib("check", path)
+                self.assertEqual(r.returncode, 2, f"{name}: {r.stdout}{r.stderr}")
+                lines = r.stderr.strip().split("\n")
+                self.assertEqual(len(lines), 1, r.stderr)
+                self.assertIn("cells[", lines[0])
+                self.assertIn(why, lines[0])
+
     def test_bad_command_lines_exit_2(self):
         self.assertEqual(rbfib("run", SCENES[0]).returncode, 2)  # --out missing
         r = rbfib("run", SCENES[0], "--out", tempfile.gettempdir(), "--until", "4 um")
