@@ -23,12 +23,11 @@
 //
 // Run:   build/studies/study_chapter5_shear --scale quick --out runs/chapter5_shear
 #include "common/cell_shape.hpp"
+#include "common/scene_run.hpp"
 #include "common/study.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/units.hpp"
-#include "rbfib/scene/checkpoint.hpp"
-#include "rbfib/scene/scene.hpp"
 #include "rbfib/sim/ib_step.hpp"
 
 #include <chrono>
@@ -36,7 +35,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 using namespace rbfib;
 namespace st = rbfib::study;
@@ -126,40 +124,26 @@ Sample sample(const sim::ImmersedBoundary& ib, long material, double force_densi
   return s;
 }
 
-// ---- Samples on disk (full scale: continued after an interruption) ----------------------------
-void save_samples(const std::string& path, const std::vector<Sample>& v) {
-  std::ofstream f(path + ".tmp");
-  f.precision(17);
-  for (const Sample& s : v) {
-    f << s.t << ' ' << s.volume << ' ' << s.inclination << ' ' << s.taylor << ' ' << s.force_density;
-    for (double x : s.shape.center) f << ' ' << x;
-    for (const Vec3& a : s.shape.axes)
-      for (double x : a) f << ' ' << x;
-    for (double x : s.shape.extent) f << ' ' << x;
-    for (double x : s.material) f << ' ' << x;
-    f << '\n';
-  }
-  f.close();
-  std::filesystem::rename(path + ".tmp", path);
+/// A sample as a row of numbers (common/scene_run.hpp keeps them on disk at full scale) and back.
+std::vector<double> to_row(const Sample& s) {
+  std::vector<double> r{s.t, s.volume, s.inclination, s.taylor, s.force_density};
+  r.insert(r.end(), s.shape.center.begin(), s.shape.center.end());
+  for (const Vec3& a : s.shape.axes) r.insert(r.end(), a.begin(), a.end());
+  r.insert(r.end(), s.shape.extent.begin(), s.shape.extent.end());
+  r.insert(r.end(), s.material.begin(), s.material.end());
+  return r;
 }
 
-std::vector<Sample> load_samples(const std::string& path, double t_max) {
-  std::vector<Sample> v;
-  std::ifstream f(path);
-  std::string line;
-  while (std::getline(f, line)) {
-    std::istringstream in(line);
-    Sample s;
-    in >> s.t >> s.volume >> s.inclination >> s.taylor >> s.force_density;
-    for (double& x : s.shape.center) in >> x;
-    for (Vec3& a : s.shape.axes)
-      for (double& x : a) in >> x;
-    for (double& x : s.shape.extent) in >> x;
-    for (double& x : s.material) in >> x;
-    if (!in) throw InputError("samples file " + path, "'" + line + "'", "a malformed line");
-    if (s.t <= t_max * (1 + 1e-12)) v.push_back(s);
-  }
-  return v;
+Sample from_row(const std::vector<double>& r) {
+  require(r.size() == 23, "chapter5_shear sample row", r.size(), "expected 23 numbers");
+  Sample s;
+  s.t = r[0], s.volume = r[1], s.inclination = r[2], s.taylor = r[3], s.force_density = r[4];
+  auto take = [&](std::size_t at, Vec3& v) { std::copy(r.begin() + long(at), r.begin() + long(at) + 3, v.begin()); };
+  take(5, s.shape.center);
+  for (int a = 0; a < 3; ++a) take(8 + 3 * std::size_t(a), s.shape.axes[a]);
+  take(17, s.shape.extent);
+  take(20, s.material);
+  return s;
 }
 
 /// Runs one scene to t_end (or until a NumericalError stops it), sampling every `every` steps.
@@ -168,20 +152,22 @@ Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, i
   char mu_text[32];
   std::snprintf(mu_text, sizeof mu_text, "%g", mu / units::cP);
   const std::string tag = prefix + "rate" + to_text(std::lround(rate)) + "_mu" + mu_text + "cP_dt" + to_text(std::lround(dt / units::ns)) + "ns";
-  const std::string text = scene_text(s, rate, mu, dt, t_end);
-  std::ofstream(opt.out_dir + "/scene_" + tag + ".yaml") << text;
-  sim::ImmersedBoundary ib = scene::build(scene::parse_scene(text, "scene_" + tag + ".yaml"));
   Run r;
   r.rate = rate;
   r.mu = mu;
   r.dt = dt;
   r.t_end = t_end;
-  const long n = ib.batch(0).type().n_data();
-  // The tracked material point: the data site on the rim in the shear plane, farthest along the
-  // profile's long axis (e_x x p, p the short axis) at t = 0.
+  const long total = std::lround(t_end / dt);
   long material = 0;
-  {
+  // Outlines (Fig. 5.2) at the start, 1/3, 2/3 and the end, kept in files as they are taken so
+  // that a continued run has them all.
+  auto outline_file = [&](int k) { return opt.out_dir + "/outline_" + tag + "_" + std::to_string(k) + ".txt"; };
+  st::SceneRunHooks hooks;
+  hooks.at_start = [&](const sim::ImmersedBoundary& ib) {
+    // The tracked material point: the data site on the rim in the shear plane, farthest along
+    // the profile's long axis (e_x x p, p the short axis) at t = 0.
     const std::vector<double> X = ib.batch(0).positions_host();
+    const long n = ib.batch(0).type().n_data();
     const st::CellShape s0 = st::cell_shape(X, n, 1, 0);
     const Vec3& p = s0.axes[0];
     double best = -1e300;
@@ -189,72 +175,33 @@ Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, i
       const double q = (X[std::size_t(2 * n + i)] - s0.center[2]) * p[1] - (X[std::size_t(n + i)] - s0.center[1]) * p[2];
       if (q > best) best = q, material = i;
     }
-  }
-  const std::string ckpt = opt.out_dir + "/checkpoint_" + tag + ".h5", samples = opt.out_dir + "/samples_" + tag + ".txt";
-  if (resumable && std::filesystem::exists(ckpt)) {
-    scene::Checkpoint c = scene::read_checkpoint(ckpt);
-    if (c.scene_yaml == text) {
-      ib.restore(c.state);
-      r.samples = load_samples(samples, ib.time());
-      st::log(opt, tag + ": continuing from " + ckpt + " at t = " + to_text(ib.time() / units::ms) + " ms");
-    }
-  }
-  if (r.samples.empty()) r.samples.push_back(sample(ib, material, 0));
-  const long total = std::lround(t_end / dt);
-  // Outlines (Fig. 5.2) kept in files as they are taken, so that a continued run has them all.
-  auto outline_file = [&](int k) { return opt.out_dir + "/outline_" + tag + "_" + std::to_string(k) + ".txt"; };
-  auto outline_index = [&](long step) {
+  };
+  hooks.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport* rep) {
+    return to_row(sample(ib, material, rep ? rep->max_force_density : 0));
+  };
+  hooks.after_step = [&](const sim::ImmersedBoundary& ib) {
+    const long step = ib.step_count();
+    if (step == 0)  // a fresh start: no outline of an earlier run may remain
+      for (int k = 1; k < 4; ++k) std::filesystem::remove(outline_file(k));
     for (int k = 0; k < 4; ++k)
-      if (step == total * k / 3) return k;
-    return -1;
-  };
-  auto take_outline = [&] {
-    if (const int k = outline_index(ib.step_count()); k >= 0) {
-      const std::vector<double> X = ib.batch(0).positions_host();
-      const Sample& sm = r.samples.back();
-      std::ofstream f(outline_file(k));
-      f.precision(17);
-      f << ib.time() << '\n';
-      for (long i = 0; i < n; ++i) f << X[std::size_t(2 * n + i)] - sm.shape.center[2] << ' ' << X[std::size_t(n + i)] - sm.shape.center[1] << '\n';
-    }
-  };
-  if (ib.step_count() == 0) {  // a fresh start: no outline of an earlier run may remain
-    for (int k = 1; k < 4; ++k) std::filesystem::remove(outline_file(k));
-    take_outline();
-  }
-  auto t0 = std::chrono::steady_clock::now(), last_log = t0, last_save = t0;
-  try {
-    while (ib.step_count() < total) {
-      const sim::IbStepReport rep = ib.step();
-      ++r.steps_timed;
-      r.min_bound = std::min(r.min_bound, rep.dt_bound);
-      const bool outline = outline_index(ib.step_count()) >= 0;
-      if (ib.step_count() % every == 0 || ib.step_count() == total || outline) r.samples.push_back(sample(ib, material, rep.max_force_density));
-      if (outline) take_outline();
-      const auto now = std::chrono::steady_clock::now();
-      if (std::chrono::duration<double>(now - last_log).count() > 30) {
-        const double el = std::chrono::duration<double>(now - t0).count();
-        st::log(opt, tag + ": t = " + to_text(ib.time() / units::ms) + " of " + to_text(t_end / units::ms) + " ms, " +
-                         to_text(r.steps_timed / el) + " steps/s, ETA " + to_text((total - ib.step_count()) * el / r.steps_timed) + " s");
-        last_log = now;
+      if (step == total * k / 3) {
+        const std::vector<double> X = ib.batch(0).positions_host();
+        const long n = ib.batch(0).type().n_data();
+        const st::CellShape sh = st::cell_shape(X, n, 1, 0);
+        std::ofstream f(outline_file(k));
+        f.precision(17);
+        f << ib.time() << '\n';
+        for (long i = 0; i < n; ++i) f << X[std::size_t(2 * n + i)] - sh.center[2] << ' ' << X[std::size_t(n + i)] - sh.center[1] << '\n';
       }
-      if (resumable && std::chrono::duration<double>(now - last_save).count() > 300) {
-        scene::write_checkpoint(ckpt, text, ib);
-        save_samples(samples, r.samples);
-        last_save = now;
-      }
-    }
-  } catch (const NumericalError& e) {
-    r.stopped = e.what();
-    st::log(opt, tag + ": stopped at t = " + to_text(ib.time() / units::ms) + " ms: " + r.stopped);
-  }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.steps = ib.step_count();
-  if (resumable && r.stopped.empty()) {
-    scene::write_checkpoint(ckpt, text, ib);
-    save_samples(samples, r.samples);
-  }
-  r.X = ib.batch(0).positions_host();
+  };
+  const st::SceneRun run = st::run_scene(scene_text(s, rate, mu, dt, t_end), tag, every, resumable, opt, hooks);
+  for (const std::vector<double>& row : run.samples) r.samples.push_back(from_row(row));
+  r.X = run.final_positions.at(0);
+  r.steps = run.steps;
+  r.steps_timed = run.steps_timed;
+  r.seconds = run.seconds;
+  r.min_bound = run.min_bound;
+  r.stopped = run.stopped;
   for (int k = 0; k < 4; ++k) {
     std::ifstream f(outline_file(k));
     Run::Outline o;

@@ -1,0 +1,43 @@
+#pragma once
+// Runs one scene for a study: built from its YAML text (kept beside the results, where `rbfib run`
+// reruns it), stepped to the scene's end time, sampled every few steps, progress logged every 30 s;
+// a numerical failure (eq. 5.4, a degenerate cell) ends the run early and is reported, not thrown.
+// Resumable runs (full scale) write DIR/checkpoint_<tag>.h5 (scene/checkpoint.hpp) and their
+// samples (DIR/samples_<tag>.txt, one row of numbers per line) every five minutes of wall time and
+// at the end, and continue from them when started again with the same scene text.
+#include "common/study.hpp"
+#include "rbfib/sim/ib_step.hpp"
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace rbfib::study {
+
+struct SceneRunHooks {
+  /// Called once after the scene is built, at t = 0 (before a checkpoint is restored).
+  std::function<void(const sim::ImmersedBoundary&)> at_start;
+  /// One row of numbers describing the state; `report` is null for the row at the start.
+  std::function<std::vector<double>(const sim::ImmersedBoundary&, const sim::IbStepReport* report)> sample;
+  /// Called after every step (and once at the start of a fresh run).
+  std::function<void(const sim::ImmersedBoundary&)> after_step;
+};
+
+struct SceneRun {
+  std::vector<std::vector<double>> samples;  ///< rows from hooks.sample, the first at t = 0
+  std::vector<std::vector<double>> final_positions;  ///< each batch's data sites at the end (cm)
+  long steps = 0;        ///< steps from t = 0 to the end (or to the failure)
+  long steps_timed = 0;  ///< steps taken by this process
+  double seconds = 0;    ///< their wall time (s)
+  double min_bound = INFINITY;  ///< smallest eq. 5.4 bound over those steps (s)
+  std::string stopped;   ///< the NumericalError's message when the run ended early
+  double seconds_per_step() const { return steps_timed > 0 ? seconds / double(steps_timed) : NAN; }
+};
+
+/// Runs the scene `text` (its end time is the run's), sampling every `every` steps and at the end;
+/// writes DIR/scene_<tag>.yaml.
+SceneRun run_scene(const std::string& text, const std::string& tag, int every, bool resumable, const Options& opt,
+                   const SceneRunHooks& hooks);
+
+}  // namespace rbfib::study
