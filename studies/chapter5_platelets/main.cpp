@@ -1,0 +1,210 @@
+// Reproduces the platelet baseline of seed Sec. 5.2 (before Sec. 5.2.1): two platelets over a
+// flat endothelium, no red cells, shear 1000/s. The 16 x 12 x 16 um box of Sec. 5.2, periodic in x
+// and z, walls in y, the top one moving at 12 mm/s along z, the flow started as the steady shear;
+// the endothelium as tethered points on the plane y = 1 um (eq. 2.10, k = 2.5 dyn/cm, eta = 2.5e-7
+// dyn s/cm per point, Sec. 2.2); two platelets (neo-Hookean + bending about the reference
+// curvature, Sec. 2.2) lying flat, 0.3 um and 0.5 um above it (gaps between surfaces: the platelet
+// is 1 um thick); B3 kernel, backward-forward Euler; plasma of 1 cP (the seed's code; at the 0.1 cP
+// of Sec. 2.1 this endothelium is unstable at 50 ns, reference/chapter4_cells.yaml).
+//   full:  h = 0.2 um, 900 / 900 sites, 16,000 endothelium points, dt = 50 ns (the seed's), to
+//          100 ms (a wobble at the seed's 10/s), continued from checkpoints;
+//   quick: h = 0.4 um, 400 / 400 sites, 64 x 64 endothelium points (the same spacing in h), dt =
+//          100 ns (the springs' explicit limit here is about 160 ns: 200 ns blows up in 3 steps),
+//          to 0.3 ms: the onset of the motion, not a period.
+// Measured per platelet every few steps: the gap (the lowest data site above the endothelium's
+// plane), the tilt of its short axis from the wall normal in the shear plane (the sense of the
+// shear positive; edge-on, the edge pointing at the wall, within 45 degrees of 90), the centre's
+// height; the endothelium's largest displacement from its anchors; volumes. Rates beside Jeffery's
+// rigid spheroid in unbounded shear (a wall slows a particle's rotation); at full scale the wobble
+// and tumble frequencies and the time spent edge-on beside the seed's 10/s, 30/s and 3-4 ms.
+//
+// Run:   build/studies/study_chapter5_platelets --scale quick --out runs/chapter5_platelets
+#include "common/cell_shape.hpp"
+#include "common/scene_run.hpp"
+#include "common/study.hpp"
+#include "rbfib/core/error.hpp"
+#include "rbfib/core/units.hpp"
+
+#include <cmath>
+
+using namespace rbfib;
+namespace st = rbfib::study;
+using st::Json;
+using st::Vec3;
+
+namespace {
+constexpr double pi = 3.14159265358979323846;
+const double wall_y = 1 * units::um;        // the endothelium's plane
+const double gaps_um[2] = {0.3, 0.5};       // the seed's two platelets
+const double half_thickness = 0.5 * units::um;
+
+struct Setup {
+  int cells_x = 0, cells_y = 0;  // grid cells along x (and z) and y
+  int sites = 0;                 // data = sample sites per platelet
+  int endothelium = 0;           // points per side of the lattice
+  double dt = 0, t_end = 0;
+};
+
+std::string scene_text(const Setup& s) {
+  auto um = [](double x) { return to_text(x) + " um"; };
+  std::string cells;
+  for (int c = 0; c < 2; ++c)
+    cells += "  - {type: platelet, center: [" + um(4 + 8 * c) + ", " + um(1 + gaps_um[c] + 0.5) + ", " + um(4 + 8 * c) +
+             "], axis: [1, 0, 0], angle: 90 deg}\n";
+  return "# chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)\n"
+         "name: chapter5_platelets\n"
+         "domain:\n  size: [16 um, 12 um, 16 um]\n  periodic: [x, z]\n"
+         "  walls:\n    y: {lower: [0 mm/s, 0 mm/s, 0 mm/s], upper: [0 mm/s, 0 mm/s, 12 mm/s]}\n"
+         "  initial_flow: shear\n"
+         "fluid: {density: 1 g/cm^3, viscosity: 1 cP}\n"
+         "grid: {cells: [" + to_text(s.cells_x) + ", " + to_text(s.cells_y) + ", " + to_text(s.cells_x) + "]}\n"
+         "time: {integrator: backward_forward_euler, dt: " + to_text(s.dt) + " s, end: " + to_text(s.t_end) + " s}\n"
+         "ib: {kernel: bspline3}\n"
+         "cell_types:\n  - {name: platelet, preset: platelet, data_sites: " + to_text(s.sites) + ", sample_sites: " + to_text(s.sites) + "}\n"
+         "cells:\n" + cells +
+         "tethered_points:\n  - {name: endothelium, plane: {y: 1 um, points: [" + to_text(s.endothelium) + ", " + to_text(s.endothelium) +
+         "]}, k: 2.5 dyn/cm, eta: 2.5e-7 dyn s/cm}\n";
+}
+
+/// One sample: t, then per platelet (centre 3, short axis 3, gap, volume), then the endothelium's
+/// largest displacement from its anchors.
+std::vector<double> sample(const sim::ImmersedBoundary& ib) {
+  const cells::Batch& b = ib.batch(0);
+  const std::vector<double> X = b.positions_host();
+  const long n = b.type().n_data();
+  std::vector<double> row{ib.time()};
+  for (long c = 0; c < 2; ++c) {
+    const st::CellShape s = st::cell_shape(X, n, 2, c);
+    double lowest = INFINITY;
+    for (long i = 0; i < n; ++i) lowest = std::min(lowest, X[std::size_t((2 + c) * n + i)]);  // y of cell c: column d N + c = 2 + c
+    row.insert(row.end(), s.center.begin(), s.center.end());
+    row.insert(row.end(), s.axes[0].begin(), s.axes[0].end());
+    row.push_back(lowest - wall_y);
+    row.push_back(ib.diagnostics(0).volume.empty() ? 0 : ib.diagnostics(0).volume[std::size_t(c)]);
+  }
+  const sim::TetheredPoints& e = ib.points(0);
+  const host_vector<double> Xe(e.X.begin(), e.X.end()), A(e.anchors.begin(), e.anchors.end());
+  const std::size_t m = Xe.size() / 3;
+  double worst = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    double d2 = 0;
+    for (int d = 0; d < 3; ++d) d2 += std::pow(Xe[d * m + i] - A[d * m + i], 2);
+    worst = std::max(worst, std::sqrt(d2));
+  }
+  row.push_back(worst);
+  return row;
+}
+
+struct Platelet {
+  std::vector<double> tilt, gap, height;  // rad (unwrapped), cm, cm
+  double volume_change = 0;
+  double tilt_rate = 0, jeffery_rate = 0;  // over the second half, / gdot
+  double edge_on_seconds = 0;              // time with the short axis within 45 deg of the flow
+  int flips = 0;                           // passes of the tilt through 90 deg + k 180 deg
+  double min_gap = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return st::run_main("chapter5_platelets", [&] {
+    const st::Options opt = st::parse_command_line(argc, argv, "chapter5_platelets",
+                                                   "Sec. 5.2: two platelets over a flat endothelium in shear 1000/s, wobbling and tumbling");
+    const bool full = opt.scale == st::Scale::full;
+    const double us = units::us, ms = units::ms, gdot = 1000;
+    const Setup s = full ? Setup{80, 60, 900, 128, 50 * units::ns, 100 * ms} : Setup{40, 30, 400, 64, 100 * units::ns, 0.3 * ms};
+    const long total = std::lround(s.t_end / s.dt);
+    const int every = int(std::max(1L, total / 400));
+
+    Json results = st::make_results(opt);
+    Json& P = results["parameters"];
+    P["box_um"] = "16 x 12 x 16, periodic x and z, walls in y, the top one at 12 mm/s along z (shear 1000/s)";
+    P["fluid"] = "rho = 1 g/cm^3, mu = 1 cP (the seed's code; Sec. 2.1 says 0.1 cP)";
+    P["h_um"] = 16.0 / s.cells_x;
+    P["platelet_sites"] = s.sites;
+    P["endothelium"] = to_text(s.endothelium) + " x " + to_text(s.endothelium) + " tethered points at y = 1 um, k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm";
+    P["gaps_um"] = Json::Array{Json(gaps_um[0]), Json(gaps_um[1])};
+    P["dt_us"] = s.dt / us;
+    P["t_end_ms"] = s.t_end / ms;
+    P["kernel_integrator_coupling"] = "B3 kernel, backward-forward Euler, the seed's coupling (a)-(g)";
+
+    st::SceneRunHooks hooks;
+    hooks.sample = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib); };
+    const st::SceneRun run = st::run_scene(scene_text(s), "platelets", every, full, opt, hooks);
+
+    // ---- Analysis ---------------------------------------------------------------------------
+    std::vector<double> t;
+    for (const auto& r : run.samples) t.push_back(r[0]);
+    const std::size_t ns = t.size(), half = ns / 2;
+    Json ts = st::table({"gap_um", "t_ms", "strain", "tilt_deg", "jeffery_tilt_deg", "gap_now_um", "height_um"},
+                        {"um", "ms", "", "deg", "deg", "um", "um"});
+    Json sum = st::table({"gap_um", "min_gap_um", "tilt_end_deg", "tilt_rate_over_gdot", "jeffery_rate_over_gdot", "rate_over_jeffery",
+                          "flips", "flip_frequency_1_s", "edge_on_ms", "volume_change_rel"},
+                         {"um", "um", "deg", "", "", "", "", "1/s", "ms", ""});
+    double endothelium_max = 0;
+    for (const auto& r : run.samples) endothelium_max = std::max(endothelium_max, r.back());
+    for (int c = 0; c < 2; ++c) {
+      const std::size_t o = 1 + 8 * std::size_t(c);
+      Platelet p;
+      std::vector<double> angle;
+      double v0 = 0;
+      p.min_gap = INFINITY;
+      for (const auto& r : run.samples) {
+        // Tilt of the short axis from the wall normal (y) toward the flow (z), in (-90, 90] deg.
+        const Vec3 axis{r[o + 3], r[o + 4], r[o + 5]};
+        angle.push_back(std::atan(axis[2] / axis[1]));
+        p.gap.push_back(r[o + 6]);
+        p.height.push_back(r[o + 1]);
+        p.min_gap = std::min(p.min_gap, r[o + 6]);
+        if (r[o + 7] > 0 && v0 == 0) v0 = r[o + 7];
+        if (r[o + 7] > 0) p.volume_change = std::max(p.volume_change, std::abs(r[o + 7] - v0) / v0);
+      }
+      p.tilt = st::unwrap(angle, pi);
+      // Jeffery's rigid spheroid in unbounded shear from the same axis (flow z, gradient y).
+      const std::vector<double>& r0 = run.samples.front();
+      const std::vector<Vec3> jef = st::jeffery_axis(Vec3{r0[o + 3], r0[o + 4], r0[o + 5]}, 0.5 / 1.55, gdot, 2, 1, t);
+      std::vector<double> jangle;
+      for (const Vec3& a : jef) jangle.push_back(std::atan(a[2] / a[1]));
+      const std::vector<double> jt = st::unwrap(jangle, pi);
+      const std::vector<double> th(t.begin() + long(half), t.end());
+      // The tilt grows in the sense of the shear: u = gdot y e_z turns the axis from y toward z.
+      p.tilt_rate = st::slope(th, std::vector<double>(p.tilt.begin() + long(half), p.tilt.end())) / gdot;
+      p.jeffery_rate = st::slope(th, std::vector<double>(jt.begin() + long(half), jt.end())) / gdot;
+      for (std::size_t i = 1; i < ns; ++i) {
+        if (std::abs(std::remainder(p.tilt[i], pi)) > pi / 4) p.edge_on_seconds += t[i] - t[i - 1];
+        if (std::floor(p.tilt[i] / pi - 0.5) != std::floor(p.tilt[i - 1] / pi - 0.5)) ++p.flips;
+      }
+      const std::size_t stride = std::max<std::size_t>(1, ns / 200);
+      for (std::size_t i = 0; i < ns; i += stride)
+        ts["rows"].push(Json::Array{Json(gaps_um[c]), Json(t[i] / ms), Json(gdot * t[i]), Json(p.tilt[i] * 180 / pi), Json(jt[i] * 180 / pi),
+                                    Json(p.gap[i] / units::um), Json(p.height[i] / units::um)});
+      const double span = t.back() - t.front();
+      sum["rows"].push(Json::Array{Json(gaps_um[c]), Json(p.min_gap / units::um), Json(p.tilt.back() * 180 / pi), Json(p.tilt_rate),
+                                   Json(p.jeffery_rate), Json(p.tilt_rate / p.jeffery_rate), Json(double(p.flips)),
+                                   Json(span > 0 ? p.flips / span : NAN), Json(p.edge_on_seconds / ms), Json(p.volume_change)});
+      const std::string k = c == 0 ? "near" : "far";
+      results["values"]["min_gap_um_" + k] = p.min_gap / units::um;
+      results["values"]["rate_over_jeffery_" + k] = p.tilt_rate / p.jeffery_rate;
+      results["values"]["volume_change_" + k] = p.volume_change;
+      results["values"]["flips_" + k] = double(p.flips);
+      results["values"]["edge_on_ms_" + k] = p.edge_on_seconds / ms;
+      st::log(opt, "platelet " + to_text(gaps_um[c]) + " um above the wall: min gap " + to_text(p.min_gap / units::um) + " um, tilt " +
+                       to_text(p.tilt.back() * 180 / pi) + " deg, rate " + to_text(p.tilt_rate) + " gdot (Jeffery " + to_text(p.jeffery_rate) +
+                       "), flips " + to_text(p.flips) + ", edge-on " + to_text(p.edge_on_seconds / ms) + " ms, volume change " +
+                       to_text(p.volume_change));
+    }
+    results["values"]["endothelium_displacement_um"] = endothelium_max / units::um;
+    results["values"]["completed"] = run.stopped.empty() ? 1.0 : 0.0;
+    results["tables"]["platelets"] = ts;
+    results["tables"]["summary"] = sum;
+    // The cost: time per step and the time to the seed's 100 ms at the seed's step.
+    Json cost = st::table({"h_um", "dt_us", "steps", "seconds", "seconds_per_step", "steps_to_100ms", "hours_to_100ms"},
+                          {"um", "us", "", "s", "s", "", "h"});
+    const double steps_100 = std::round(100 * ms / s.dt);
+    cost["rows"].push(Json::Array{Json(16.0 / s.cells_x), Json(s.dt / us), Json(double(run.steps)), Json(run.seconds), Json(run.seconds_per_step()),
+                                  Json(steps_100), Json(steps_100 * run.seconds_per_step() / 3600)});
+    results["tables"]["cost"] = cost;
+    st::write_results(opt, results);
+    return 0;
+  });
+}
