@@ -1,0 +1,677 @@
+// Reproduces seed Sec. 5.1.3, Fig. 5.3: collision tests. Two red cells (the full model of Sec. 2.2:
+// Skalak, bending, dissipation; the red_cell preset) in the 16 um box with walls at rest in y
+// (periodic in x and z), fluid at rest; Peskin's two-stage scheme (the seed's coupling (a)-(g)),
+// the 4-point cosine kernel; centres on the line x = z, y = 8 um, the gap between the cells'
+// convex hulls (concavities ignored) 4h along d = (e1 + e3)/sqrt 2; each cell pushed toward the
+// other by the fictitious force density F_fict (below). Four orientations (Fig. 5.3):
+//   a-b  concavities facing: both symmetry axes along d;
+//   c-d  edges facing: both axes along e2 (the disks in the plane y = 8 um, seen edge-on from
+//        above the plane x = z, where the profile shows the concavities);
+//   e-f  the edge of cell 2 (axis e2) facing the concavity of cell 1 (axis d);
+//   g-h  as c-d with cell 2 turned by pi/2 about e1 + e3 (its axis along (e1 - e3)/sqrt 2).
+// Resolutions: the seed's, h = 0.2 um (80^3), n_d = 2,500, n_s = 10,000, dt = 50 ns; and
+// h = 0.5 um (32^3), n_d = 400, n_s = 1,600 (n h^2 as the seed's: the sites' spacing in units of h
+// is the same), dt = 100 ns. Quick scale: h = 0.5 um to 60 us. Full scale: h = 0.5 um to the
+// seed's 1.5 ms or until eq. 5.4 stops the run (minutes), then h = 0.2 um likewise (hours).
+//
+// The fictitious force. The seed writes F_fict = +-0.1 dyn/cm (e1 + e3)/sqrt 2 and calls it a
+// force density; a Lagrangian force density (eq. 2.24: f = sum_j dA_j F(X_j) delta_h) is a force
+// per unit reference area, dyn/cm^2, so dyn/cm lacks a length. We read the coefficient as the
+// dissertation's published collision drivers apply it: an energy per area c (0.1 dyn/cm) times
+// each sample site's reference area weight, that product taken as the site's force in code units
+// whose length is 10 um (1e-3 cm), mass 1 ug and time 1 ms (so that 1 dyn/cm is the unit of
+// energy per area and 1e-3 dyn the unit of force). A site of area weight dA0 (cm^2) receives
+//   c [dyn/cm] * (dA0 / 1e-6 cm^2) * 1e-3 dyn = (c / 1e-3 cm) dA0 = 100 dyn/cm^2 * dA0,
+// i.e. F_fict = 100 dyn/cm^2 per unit reference area, uniform over the cell, a total force
+// F_fict A0 = 1.3419e-4 dyn per cell (A0 = 134.19 um^2, Evans-Fung). The literal alternative,
+// 0.1 dyn/cm^2 (1.34e-7 dyn, F / (E R0) = 0.14), moves a cell by about 0.2 um per ms and could not
+// produce the "considerable deformation" the seed reports. A constant total force per cell spread
+// in proportion to dA0 (cells::Batch::set_body_force, the scene's cells[i].force) is exactly this
+// uniform density.
+//
+// Measured: every few steps the minimum distance between the two cells' sample sites (the
+// nearest periodic image in x and z), the distance of their centroids along d, their volumes,
+// max |u| and dt / (eq. 5.4's bound); the cells' outlines seen from above the plane x = z (the
+// sample sites within h/2 of that plane, and the silhouette of all sites, in the coordinates
+// s = X.d - 8 sqrt 2 um and y) at t = 0, mid-run (full: the seed's figure time) and the end; the
+// time and step at which eq. 5.4 (or another numerical failure) stops a run; wall time per step.
+//
+// Each run keeps DIR/h<h>/<orientation>/ with its scene (scene.yaml, built by scene::parse_scene
+// + scene::build; `build/bin/rbfib run` reruns it) and its series (series.csv, outlines.csv). Full
+// scale is resumable: a checkpoint (checkpoint.h5, scene/checkpoint.hpp) every 1000 steps at
+// h = 0.5 um and 200 at h = 0.2 um, and status.txt once the run has ended; running the same
+// command again continues each unfinished run from its checkpoint. CHAPTER5_COLLISION_MAX_STEPS=N
+// limits the steps per orientation in one sitting at h = 0.2 um (to measure the time per step);
+// the results then say how many steps are left and the time they need at the measured rate.
+// Quick scale always starts afresh.
+//
+// Run:   build/studies/study_chapter5_collision --scale quick --out runs/chapter5_collision/quick
+//        (about 100 s of one core here);
+//        CHAPTER5_COLLISION_MAX_STEPS=6 build/studies/study_chapter5_collision --scale full
+//          --out runs/chapter5_collision/full   (h = 0.5 um to the end, about 15 minutes here, then
+//          6 steps of each seed-resolution run; without the variable it runs on, for days here)
+#include "common/study.hpp"
+#include "rbfib/cells/batch.hpp"
+#include "rbfib/cells/shapes.hpp"
+#include "rbfib/core/error.hpp"
+#include "rbfib/core/units.hpp"
+#include "rbfib/scene/checkpoint.hpp"
+#include "rbfib/scene/scene.hpp"
+#include "rbfib/sim/ib_step.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+using namespace rbfib;
+namespace st = rbfib::study;
+using st::Json;
+using Vec3 = std::array<double, 3>;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const double R0 = 3.91 * units::um;          // Evans-Fung radius (Sec. 2.2)
+const double kBox = 16 * units::um;          // the box, periodic in x and z
+const double kFict = 0.1 / (1e-3 * units::cm);  // dyn/cm^2: 0.1 dyn/cm over the code's 10 um (header)
+const Vec3 kLine = {1 / std::sqrt(2.0), 0, 1 / std::sqrt(2.0)};  // d = (e1 + e3)/sqrt 2
+const Vec3 kView = {1 / std::sqrt(2.0), 0, -1 / std::sqrt(2.0)};  // the normal of the plane x = z
+
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+std::string fmt(double v, const char* f = "%.4g") {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+// ---- The reference red cell (Sec. 2.2, cells/shapes.hpp) ----------------------------------------
+// X(theta, phi) = R0 [cos theta cos phi, sin theta cos phi, zeta(cos^2 phi) sin phi],
+// zeta(s) = 0.105 + s - 0.56 s^2.
+Vec3 evans_fung(double theta, double phi) {
+  static const cells::ReferenceShape shape = cells::evans_fung_red_cell(R0);
+  Vec3 x;
+  shape.position(theta, phi, x.data());
+  return x;
+}
+
+/// The surface area of the reference cell, 2 pi int r sqrt(r'^2 + z'^2) dphi over [-pi/2, pi/2]
+/// (composite Simpson, 20,000 intervals, derivatives exact).
+double reference_area() {
+  const int n = 20000;
+  auto integrand = [](double phi) {
+    const double c = std::cos(phi), s = std::sin(phi), s2 = c * c;
+    const double r = R0 * c, dr = -R0 * s;
+    const double zeta = 0.105 + s2 - 0.56 * s2 * s2, dzeta = (1 - 1.12 * s2) * (-2 * c * s);
+    const double dz = R0 * (dzeta * s + zeta * c);
+    return 2 * kPi * r * std::sqrt(dr * dr + dz * dz);
+  };
+  const double a = -kPi / 2, h = kPi / n;
+  double sum = integrand(a) + integrand(-a);
+  for (int i = 1; i < n; ++i) sum += (i % 2 ? 4 : 2) * integrand(a + i * h);
+  return sum * h / 3;
+}
+
+/// A rotation as a matrix (Rodrigues, right-handed, as cells::placed).
+using Mat3 = std::array<Vec3, 3>;
+Mat3 rotation(const Vec3& axis, double angle) {
+  const double n = std::sqrt(dot(axis, axis)), k[3] = {axis[0] / n, axis[1] / n, axis[2] / n};
+  const double c = std::cos(angle), s = std::sin(angle);
+  const double K[3][3] = {{0, -k[2], k[1]}, {k[2], 0, -k[0]}, {-k[1], k[0], 0}};
+  Mat3 R;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R[i][j] = (i == j ? c : 0.0) + s * K[i][j] + (1 - c) * k[i] * k[j];
+  return R;
+}
+
+Mat3 product(const Mat3& A, const Mat3& B) {
+  Mat3 C{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) C[i][j] += A[i][k] * B[k][j];
+  return C;
+}
+
+/// A cell's rotation (axis, angle) as the scene takes it.
+struct Pose {
+  Vec3 axis{0, 0, 1};
+  double angle = 0;
+  Mat3 matrix() const { return rotation(axis, angle); }
+};
+
+/// Axis and angle of a rotation matrix (angle in (0, pi)).
+Pose pose_of(const Mat3& R) {
+  const double angle = std::acos(std::clamp((R[0][0] + R[1][1] + R[2][2] - 1) / 2, -1.0, 1.0));
+  const double s = 2 * std::sin(angle);
+  return {{(R[2][1] - R[1][2]) / s, (R[0][2] - R[2][0]) / s, (R[1][0] - R[0][1]) / s}, angle};
+}
+
+/// The support function max_X (R X).u of the rotated reference cell (its convex hull's extent
+/// along u from the centre), by a search over a 1441 x 721 (theta, phi) grid: within 1e-4 um.
+double support(const Pose& p, const Vec3& u) {
+  const Mat3 R = p.matrix();
+  double best = -1e300;
+  for (int i = 0; i <= 1440; ++i)
+    for (int j = 0; j <= 720; ++j) {
+      const Vec3 X = evans_fung(2 * kPi * i / 1440, -kPi / 2 + kPi * j / 720);
+      double v = 0;
+      for (int a = 0; a < 3; ++a) v += (R[a][0] * X[0] + R[a][1] * X[1] + R[a][2] * X[2]) * u[a];
+      best = std::max(best, v);
+    }
+  return best;
+}
+
+// ---- The four orientations of Fig. 5.3 ----------------------------------------------------------
+struct Orientation {
+  std::string id, what;
+  std::array<Pose, 2> pose;
+  double t_figure_ms;  // the time of the seed's right-hand panel
+};
+
+std::vector<Orientation> orientations() {
+  const Pose along_d{{0, 1, 0}, kPi / 4};  // e3 -> d
+  const Pose along_y{{1, 0, 0}, kPi / 2};  // e3 -> -e2
+  const Pose turned = pose_of(product(rotation(kLine, kPi / 2), along_y.matrix()));  // turned by pi/2 about d
+  return {{"a-b", "concavities facing", {along_d, along_d}, 1.5},
+          {"c-d", "edges facing", {along_y, along_y}, 1.1},
+          {"e-f", "edge facing a concavity", {along_d, along_y}, 1.5},
+          {"g-h", "edges facing, one turned by pi/2 about e1 + e3", {along_y, turned}, 1.1}};
+}
+
+struct Setup {
+  std::string label;    // names its runs' directory: h<h in um>
+  double h, dt, t_end;  // cm, s, s
+  int n_data, n_sample;
+  int measure_every, checkpoint_every;  // steps (checkpoints: 0 = none)
+  bool limited;         // CHAPTER5_COLLISION_MAX_STEPS applies
+};
+
+struct Placed {
+  std::array<Vec3, 2> center;
+  double hull_gap;  // the gap between the convex hulls along d (cm)
+};
+
+/// Centres on the line x = z, y = 8 um with the hulls' gap 4h centred on the box centre: the
+/// supporting planes of the two hulls normal to d are 4h apart. For these orientations the
+/// hulls' nearest points lie on the line of centres, so this is the gap between the hulls.
+Placed place(const Orientation& o, const Setup& s) {
+  const double h1 = support(o.pose[0], kLine), h2 = support(o.pose[1], {-kLine[0], -kLine[1], -kLine[2]});
+  const Vec3 m = {kBox / 2, kBox / 2, kBox / 2};
+  Placed p;
+  for (int a = 0; a < 3; ++a) {
+    p.center[0][a] = m[a] - (2 * s.h + h1) * kLine[a];
+    p.center[1][a] = m[a] + (2 * s.h + h2) * kLine[a];
+  }
+  p.hull_gap = dot(kLine, {p.center[1][0] - p.center[0][0], p.center[1][1] - p.center[0][1], p.center[1][2] - p.center[0][2]}) -
+               h1 - h2;
+  return p;
+}
+
+/// The run's scene (docs/scenes.md), values in CGS to 17 digits so that it reads back exactly.
+std::string scene_text(const Orientation& o, const Setup& s, const Placed& p, double force) {
+  auto triple = [](const Vec3& v, const std::string& unit) {
+    return "[" + to_text(v[0]) + " " + unit + ", " + to_text(v[1]) + " " + unit + ", " + to_text(v[2]) + " " + unit + "]";
+  };
+  const std::string L = to_text(kBox) + " cm";
+  std::string t = "# chapter5_collision: two red cells pushed together, Fig. 5.3 (" + o.id + ": " + o.what + ")\n"
+                  "name: collision_" + o.id + "\n"
+                  "domain:\n  size: [" + L + ", " + L + ", " + L + "]\n  periodic: [x, z]\n"
+                  "  walls:\n    y: {lower: [0 cm/s, 0 cm/s, 0 cm/s], upper: [0 cm/s, 0 cm/s, 0 cm/s]}\n"
+                  "fluid: {density: 1 g/cm^3, viscosity: " + to_text(0.1 * units::cP) + " P}\n"
+                  "grid: {h: " + to_text(s.h) + " cm}\n"
+                  "time: {integrator: peskin_two_stage, dt: " + to_text(s.dt) + " s, end: " + to_text(s.t_end) + " s}\n"
+                  "ib: {kernel: cosine4}\n"
+                  "cell_types:\n  - {name: red cell, preset: red_cell, data_sites: " + to_text(s.n_data) +
+                  ", sample_sites: " + to_text(s.n_sample) + "}\n"
+                  "cells:\n";
+  for (int c = 0; c < 2; ++c) {
+    const double sign = c == 0 ? 1 : -1;  // into the gap
+    const Vec3 F = {sign * force * kLine[0], 0, sign * force * kLine[2]};
+    t += "  - {type: red cell, center: " + triple(p.center[c], "cm") + ", axis: [" + to_text(o.pose[c].axis[0]) + ", " +
+         to_text(o.pose[c].axis[1]) + ", " + to_text(o.pose[c].axis[2]) + "], angle: " + to_text(o.pose[c].angle) +
+         " rad, force: " + triple(F, "dyn") + "}\n";
+  }
+  return t;
+}
+
+// ---- Measurements -------------------------------------------------------------------------------
+struct Sample {
+  long step = 0;
+  double t = 0;              // s
+  double min_gap = 0;        // cm, between the cells' sample sites
+  double separation = 0;     // cm, the centroids' distance along d
+  std::array<double, 2> volume{0, 0};  // cm^3
+  double max_velocity = 0;   // cm/s, after the last step
+  double eq54_ratio = 0;     // dt / ((1/4) sqrt(h rho / ||f||_inf)) of the last step: 1 stops the run
+  double seconds = 0;        // wall time of the steps since the previous sample
+  long steps = 0;            // their number
+};
+
+/// Sample-site positions of the batch's cells (n_s x 6, column d N + c), volumes and centroids.
+struct Sites {
+  std::vector<double> P;
+  index_t ns = 0;
+  cells::CellDiagnostics diag;
+};
+
+Sites sites(const sim::ImmersedBoundary& ib) {
+  cells::CellForces f;
+  cells::compute_forces(ib.batch(0), f);
+  return {f.positions.to_host(), ib.batch(0).type().n_sample(), f.cells};
+}
+
+/// Nearest periodic image of a difference along x and z.
+double wrap(double d) { return d - kBox * std::round(d / kBox); }
+
+/// The minimum distance between the sample sites of cell 0 and cell 1 (brute force, nearest image).
+double min_gap(const Sites& s) {
+  const index_t n = s.ns;
+  const double* x0 = &s.P[0 * n];
+  const double* x1 = &s.P[1 * n];
+  const double* y0 = &s.P[2 * n];
+  const double* y1 = &s.P[3 * n];
+  const double* z0 = &s.P[4 * n];
+  const double* z1 = &s.P[5 * n];
+  double best = std::numeric_limits<double>::infinity();
+  for (index_t i = 0; i < n; ++i)
+    for (index_t j = 0; j < n; ++j) {
+      const double dx = wrap(x1[j] - x0[i]), dy = y1[j] - y0[i], dz = wrap(z1[j] - z0[i]);
+      best = std::min(best, dx * dx + dy * dy + dz * dz);
+    }
+  return std::sqrt(best);
+}
+
+Sample measure(const sim::ImmersedBoundary& ib, const Sites& s) {
+  Sample m;
+  m.step = ib.step_count();
+  m.t = ib.time();
+  m.min_gap = min_gap(s);
+  const auto& c = s.diag.centroid;
+  m.separation = wrap(c[1][0] - c[0][0]) * kLine[0] + wrap(c[1][2] - c[0][2]) * kLine[2];
+  m.volume = {s.diag.volume[0], s.diag.volume[1]};
+  return m;
+}
+
+/// Outline rows (kind, cell, s, y; um) seen from above the plane x = z: the sample sites within
+/// h/2 of that plane (a section through both centres), and the silhouette of all sites (the
+/// farthest projected site from the cell's projected centroid in each of 72 angular bins).
+struct OutlinePoint {
+  std::string kind;
+  int cell;
+  double s, y;  // um
+};
+
+std::vector<OutlinePoint> outline(const Sites& st, double h) {
+  std::vector<OutlinePoint> out;
+  const index_t n = st.ns;
+  const double s_mid = kBox / 2 * std::sqrt(2.0);
+  for (int c = 0; c < 2; ++c) {
+    const double* x = &st.P[(0 + c) * n];
+    const double* y = &st.P[(2 + c) * n];
+    const double* z = &st.P[(4 + c) * n];
+    std::vector<double> S(n), Y(n);
+    double sc = 0, yc = 0;
+    for (index_t i = 0; i < n; ++i) {
+      S[i] = x[i] * kLine[0] + z[i] * kLine[2] - s_mid;
+      Y[i] = y[i];
+      sc += S[i] / n;
+      yc += Y[i] / n;
+      if (std::abs(x[i] * kView[0] + z[i] * kView[2]) < h / 2) out.push_back({"section", c + 1, S[i] / units::um, Y[i] / units::um});
+    }
+    const int bins = 72;
+    std::vector<double> far(bins, -1);
+    std::vector<index_t> who(bins, -1);
+    for (index_t i = 0; i < n; ++i) {
+      const double a = std::atan2(Y[i] - yc, S[i] - sc), r = std::hypot(Y[i] - yc, S[i] - sc);
+      const int b = std::min(bins - 1, int((a + kPi) / (2 * kPi) * bins));
+      if (r > far[b]) far[b] = r, who[b] = i;
+    }
+    for (int b = 0; b < bins; ++b)
+      if (who[b] >= 0) out.push_back({"silhouette", c + 1, S[who[b]] / units::um, Y[who[b]] / units::um});
+  }
+  return out;
+}
+
+// ---- One orientation's run, resumable ------------------------------------------------------------
+struct RunResult {
+  std::string status = "running";  // running, done, eq. 5.4, stopped
+  std::string message;             // the NumericalError's text when stopped
+  long steps = 0;
+  double t = 0;                    // s, reached (the last good state when stopped)
+  double v0 = 0;                   // the reference volume (cm^3)
+  double seconds = 0;              // wall time of all steps (every sitting)
+  double seconds_this_sitting = 0;
+  long steps_this_sitting = 0;
+  double area_quadrature = 0;      // sum dA0 of the built type (cm^2)
+  std::vector<Sample> series;
+  std::vector<std::pair<double, std::vector<OutlinePoint>>> outlines;  // (t, rows)
+};
+
+const char* kSeriesHeader = "step,t_s,min_gap_cm,separation_cm,volume0_cm3,volume1_cm3,max_velocity_cm_s,eq54_ratio,seconds,steps";
+
+void append(const std::string& path, const Sample& m) {
+  std::ofstream f(path, std::ios::app);
+  f.precision(17);
+  f << m.step << "," << m.t << "," << m.min_gap << "," << m.separation << "," << m.volume[0] << "," << m.volume[1] << ","
+    << m.max_velocity << "," << m.eq54_ratio << "," << m.seconds << "," << m.steps << "\n";
+}
+
+void append(const std::string& path, long step, double t, const std::vector<OutlinePoint>& rows) {
+  std::ofstream f(path, std::ios::app);
+  f.precision(10);
+  for (const auto& r : rows) f << step << "," << t << "," << r.kind << "," << r.cell << "," << r.s << "," << r.y << "\n";
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> v;
+  std::stringstream ss(line);
+  std::string x;
+  while (std::getline(ss, x, ',')) v.push_back(x);
+  return v;
+}
+
+/// Reads the series and outlines back, keeping the rows of steps <= last (a resumed run would
+/// otherwise repeat the rows written after its checkpoint), and rewrites the files with them.
+void read_back(const std::string& dir, long last, RunResult& r) {
+  r.series.clear();
+  r.outlines.clear();
+  std::ifstream fs(dir + "/series.csv");
+  std::string line, kept = std::string(kSeriesHeader) + "\n";
+  std::getline(fs, line);
+  while (std::getline(fs, line)) {
+    const auto v = split(line);
+    if (v.size() != 10 || std::atol(v[0].c_str()) > last) continue;
+    Sample m;
+    m.step = std::atol(v[0].c_str());
+    m.t = std::atof(v[1].c_str());
+    m.min_gap = std::atof(v[2].c_str());
+    m.separation = std::atof(v[3].c_str());
+    m.volume = {std::atof(v[4].c_str()), std::atof(v[5].c_str())};
+    m.max_velocity = std::atof(v[6].c_str());
+    m.eq54_ratio = std::atof(v[7].c_str());
+    m.seconds = std::atof(v[8].c_str());
+    m.steps = std::atol(v[9].c_str());
+    r.series.push_back(m);
+    kept += line + "\n";
+  }
+  fs.close();
+  std::ofstream(dir + "/series.csv") << kept;
+  std::ifstream fo(dir + "/outlines.csv");
+  kept.clear();
+  while (std::getline(fo, line)) {
+    const auto v = split(line);
+    if (v.size() != 6 || std::atol(v[0].c_str()) > last) continue;
+    const double t = std::atof(v[1].c_str());
+    if (r.outlines.empty() || r.outlines.back().first != t) r.outlines.push_back({t, {}});
+    r.outlines.back().second.push_back({v[2], std::atoi(v[3].c_str()), std::atof(v[4].c_str()), std::atof(v[5].c_str())});
+    kept += line + "\n";
+  }
+  fo.close();
+  std::ofstream(dir + "/outlines.csv") << kept;
+}
+
+long max_steps_per_sitting() {
+  const char* e = std::getenv("CHAPTER5_COLLISION_MAX_STEPS");
+  if (!e || !*e) return -1;
+  char* end = nullptr;
+  const long n = std::strtol(e, &end, 10);
+  if (*end || n < 0) throw InputError("CHAPTER5_COLLISION_MAX_STEPS", e, "must be a whole number of steps >= 0");
+  return n;
+}
+
+RunResult run(const Orientation& o, const Setup& s, double figure_time, const st::Options& opt) {
+  const std::string dir = opt.out_dir + "/" + s.label + "/" + o.id;
+  const bool resumable = s.checkpoint_every > 0;
+  if (!resumable) std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const Placed p = place(o, s);
+  const double A0 = reference_area();
+  const std::string text = scene_text(o, s, p, kFict * A0);
+  const std::string checkpoint = dir + "/checkpoint.h5", status = dir + "/status.txt";
+  RunResult r;
+
+  // An ended run of an earlier sitting: its files are the result.
+  if (resumable && std::filesystem::exists(status)) {
+    std::ifstream f(status);
+    std::getline(f, r.status);
+    f >> r.steps >> r.t >> r.seconds >> r.v0;
+    f.ignore();
+    std::getline(f, r.message);
+    read_back(dir, r.steps, r);
+    st::log(opt, s.label + " " + o.id + ": ended in an earlier sitting (" + r.status + " at t = " + fmt(r.t / units::us) + " us)");
+    return r;
+  }
+
+  sim::ImmersedBoundary ib = scene::build(scene::parse_scene(text, dir + "/scene.yaml"));
+  r.area_quadrature = ib.batch(0).type().reference_area();
+  r.v0 = ib.batch(0).type().reference_volume();
+  long start = 0;
+  if (resumable && std::filesystem::exists(checkpoint)) {
+    const scene::Checkpoint k = scene::read_checkpoint(checkpoint);
+    if (k.scene_yaml != text) throw InputError(checkpoint, "its scene", "differs from this driver's scene for " + o.id + ": remove " + dir + " to start afresh");
+    ib.restore(k.state);
+    start = ib.step_count();
+    read_back(dir, start, r);
+    for (const Sample& m : r.series) r.seconds += m.seconds;
+    st::log(opt, s.label + " " + o.id + ": continuing from " + checkpoint + " at step " + to_text(start) + ", t = " + fmt(ib.time() / units::us) + " us");
+  } else {
+    std::ofstream(dir + "/scene.yaml") << text;
+    std::ofstream(dir + "/series.csv") << kSeriesHeader << "\n";
+    std::ofstream(dir + "/outlines.csv");
+    const Sites s0 = sites(ib);
+    const Sample m0 = measure(ib, s0);
+    append(dir + "/series.csv", m0);
+    append(dir + "/outlines.csv", 0, 0.0, outline(s0, s.h));
+    r.series.push_back(m0);
+    r.outlines.push_back({0.0, outline(s0, s.h)});
+    st::log(opt, s.label + " " + o.id + " (" + o.what + "): hull gap " + fmt(p.hull_gap / units::um) + " um = " + fmt(p.hull_gap / s.h) +
+                     " h, nearest sample sites " + fmt(m0.min_gap / units::um) + " um; F_fict A0 = " + fmt(kFict * A0) +
+                     " dyn per cell (A0 = " + fmt(A0 / (units::um * units::um)) + " um^2, quadrature " +
+                     fmt(r.area_quadrature / (units::um * units::um)) + ")");
+  }
+
+  const long budget = s.limited ? max_steps_per_sitting() : -1;
+  // The mid-run outline; none when the figure's time is the end (the end has its own).
+  bool mid_done = figure_time >= s.t_end * (1 - 1e-12) || ib.time() >= figure_time * (1 - 1e-12);
+  Sample pending;
+  auto t_last = std::chrono::steady_clock::now();
+  auto flush_sample = [&](const sim::IbStepReport& rep, const Sites& at) {
+    Sample m = measure(ib, at);
+    m.max_velocity = rep.max_velocity;
+    m.eq54_ratio = rep.dt_bound > 0 && std::isfinite(rep.dt_bound) ? rep.dt / rep.dt_bound : 0;
+    m.seconds = pending.seconds;
+    m.steps = pending.steps;
+    pending = Sample{};
+    append(dir + "/series.csv", m);
+    r.series.push_back(m);
+  };
+  sim::IbStepReport rep;
+  while (true) {
+    if (ib.time() >= s.t_end * (1 - 1e-12)) {
+      r.status = "done";
+      break;
+    }
+    if (budget >= 0 && r.steps_this_sitting >= budget) break;
+    try {
+      rep = ib.step();
+    } catch (const NumericalError& e) {
+      r.message = e.what();
+      r.status = r.message.find("eq. 5.4") != std::string::npos ? "eq. 5.4" : "stopped";
+      st::log(opt, s.label + " " + o.id + ": stopped at step " + to_text(ib.step_count() + 1) + ", t = " + fmt(ib.time() / units::us) + " us: " + r.message);
+      break;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    const double dt_wall = std::chrono::duration<double>(now - t_last).count();
+    t_last = now;
+    pending.seconds += dt_wall;
+    pending.steps += 1;
+    r.seconds += dt_wall;
+    r.seconds_this_sitting += dt_wall;
+    r.steps_this_sitting += 1;
+    const long n = ib.step_count();
+    const bool mid = !mid_done && ib.time() >= figure_time * (1 - 1e-12);
+    if (n % s.measure_every == 0 || mid) {
+      const Sites at = sites(ib);
+      flush_sample(rep, at);
+      if (mid) {
+        mid_done = true;
+        append(dir + "/outlines.csv", n, ib.time(), outline(at, s.h));
+        r.outlines.push_back({ib.time(), outline(at, s.h)});
+      }
+      t_last = std::chrono::steady_clock::now();  // the measurement is not the step's time
+    }
+    if (resumable && n % s.checkpoint_every == 0) {
+      scene::write_checkpoint(checkpoint, text, ib);
+      t_last = std::chrono::steady_clock::now();
+    }
+  }
+  // The final state (the last good one when stopped): a sample and the outline.
+  const Sites at = sites(ib);
+  if (r.series.empty() || r.series.back().step != ib.step_count()) flush_sample(rep, at);
+  r.steps = ib.step_count();
+  r.t = ib.time();
+  if (r.status != "running") {
+    append(dir + "/outlines.csv", r.steps, r.t, outline(at, s.h));
+    r.outlines.push_back({r.t, outline(at, s.h)});
+  }
+  if (resumable) {
+    scene::write_checkpoint(checkpoint, text, ib);
+    if (r.status != "running") {
+      std::ofstream f(status);
+      f.precision(17);
+      f << r.status << "\n" << r.steps << " " << r.t << " " << r.seconds << " " << r.v0 << "\n" << r.message << "\n";
+    }
+  }
+  st::log(opt, s.label + " " + o.id + ": " + r.status + " at step " + to_text(r.steps) + ", t = " + fmt(r.t / units::us) + " us; " +
+                   to_text(r.steps_this_sitting) + " steps in this sitting, " + fmt(r.seconds_this_sitting) + " s");
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return st::run_main("chapter5_collision", [&] {
+    const st::Options opt = st::parse_command_line(argc, argv, "chapter5_collision",
+                                                   "Sec. 5.1.3, Fig. 5.3: two red cells pushed together in four orientations");
+    const bool full = opt.scale == st::Scale::full;
+
+    // ---- 1. Parameters -----------------------------------------------------------------------
+    // Quick: h = 0.5 um to 60 us. Full: the same resolution to the seed's 1.5 ms (or eq. 5.4;
+    // minutes), then the seed's h = 0.2 um (hours per orientation, resumable, limited per sitting
+    // by CHAPTER5_COLLISION_MAX_STEPS).
+    const Setup coarse{"h0.5", 0.5 * units::um, 100 * units::ns, (full ? 1500 : 60) * units::us, 400, 1600, 10, full ? 1000 : 0, false};
+    const Setup seed{"h0.2", 0.2 * units::um, 50 * units::ns, 1.5 * units::ms, 2500, 10000, 20, 200, true};
+    std::vector<Setup> setups = {coarse};
+    if (full) setups.push_back(seed);
+    const double A0 = reference_area();
+    Json results = st::make_results(opt);
+    Json& P = results["parameters"];
+    P["box_um"] = "16 x 16 x 16; walls at rest in y, periodic in x and z; fluid at rest initially";
+    P["fluid"] = "rho = 1 g/cm^3, mu = 0.1 cP (Chapter 2)";
+    P["cells"] = "two red cells, the red_cell preset (Sec. 2.2: Skalak E = 2.5e-3, G = 2.5e-1 dyn/cm; kappa = 2e-12 erg; nu = 2.5e-7 dyn s/cm)";
+    P["scheme"] = "Peskin's two-stage scheme, the seed's coupling (a)-(g), the 4-point cosine kernel, eq. 5.4 checked every step";
+    for (const Setup& s : setups)
+      P["resolution_" + s.label] = "h = " + fmt(s.h / units::um) + " um, n_d = " + to_text(s.n_data) + ", n_s = " + to_text(s.n_sample) +
+                                   ", dt = " + fmt(s.dt / units::ns) + " ns, to " + fmt(s.t_end / units::us) + " us; sampled every " +
+                                   to_text(s.measure_every) + " steps; eq. 5.4 stops a run when ||f||_inf > " +
+                                   fmt(s.h * 1.0 / (16 * s.dt * s.dt), "%.3g") + " dyn/cm^3";
+    P["initial_hull_gap"] = "4h along d = (e1 + e3)/sqrt 2, centres on x = z, y = 8 um, the gap centred on the box centre";
+    P["fictitious_force_density_dyn_cm2"] = kFict;
+    P["fictitious_force_per_cell_dyn"] = kFict * A0;
+    P["reference_area_um2"] = A0 / (units::um * units::um);
+    const long budget = full ? max_steps_per_sitting() : -1;
+    if (budget >= 0) P["max_steps_per_sitting_h0.2"] = double(budget);
+
+    // ---- 2. One run per resolution and orientation ----------------------------------------------
+    Json runs = st::table({"orientation", "h_um", "n_sample", "dt_ns", "status", "steps", "t_us", "t_stop_us", "initial_gap_over_h",
+                           "min_gap_um", "min_gap_over_h", "t_min_gap_us", "approach_um", "approach_over_h", "max_volume_change_rel",
+                           "seconds", "seconds_per_step", "steps_to_go", "hours_to_go"},
+                          {"", "um", "", "ns", "", "", "us", "us", "", "um", "", "us", "um", "", "", "s", "s", "", "h"});
+    Json series = st::table({"orientation", "h_um", "t_us", "min_gap_um", "gap_over_h", "separation_um", "volume_change_1",
+                             "volume_change_2", "max_velocity_mm_s", "eq54_ratio"},
+                            {"", "um", "us", "um", "", "um", "", "", "mm/s", ""});
+    Json outlines = st::table({"orientation", "h_um", "kind", "t_us", "cell", "s_um", "y_um"}, {"", "um", "", "us", "", "um", "um"});
+    std::vector<std::string> fc = {"orientation", "panels", "t_figure_ms"}, fu = {"", "", "ms"};
+    for (const Setup& s : setups) {
+      for (const char* c : {"status_", "t_reached_ms_", "t_stop_ms_"}) fc.push_back(c + s.label);
+      for (const char* u : {"", "ms", "ms"}) fu.push_back(u);
+    }
+    Json fig = st::table(fc, fu);
+    std::vector<Json::Array> fig_rows;
+    for (const Orientation& o : orientations()) fig_rows.push_back({Json(o.id), Json(o.what), Json(o.t_figure_ms)});
+    double worst_gap = 1e300, worst_volume = 0, stopped54 = 0, ended = 0, least_approach = NAN, peak54 = 0;
+    std::vector<double> per_step;
+    double total_hours_to_go = 0;
+    for (const Setup& s : setups) {
+      const double h_um = s.h / units::um;
+      std::size_t k = 0;
+      for (const Orientation& o : orientations()) {
+        const RunResult r = run(o, s, full ? o.t_figure_ms * units::ms : s.t_end / 2, opt);
+        double gmin = 1e300, tmin = 0, vmax = 0;
+        for (const Sample& m : r.series) {
+          if (m.min_gap < gmin) gmin = m.min_gap, tmin = m.t;
+          peak54 = std::max(peak54, m.eq54_ratio);
+          for (int c = 0; c < 2; ++c) vmax = std::max(vmax, std::abs(m.volume[c] - r.v0) / r.v0);
+          series["rows"].push(Json::Array{Json(o.id), Json(h_um), Json(m.t / units::us), Json(m.min_gap / units::um), Json(m.min_gap / s.h),
+                                          Json(m.separation / units::um), Json((m.volume[0] - r.v0) / r.v0),
+                                          Json((m.volume[1] - r.v0) / r.v0), Json(m.max_velocity / units::mm),
+                                          m.step > 0 ? Json(m.eq54_ratio) : Json()});
+        }
+        for (const auto& [t, rows] : r.outlines)
+          for (const OutlinePoint& q : rows)
+            outlines["rows"].push(Json::Array{Json(o.id), Json(h_um), Json(q.kind), Json(std::round(t / units::ns) / 1e3), Json(q.cell),
+                                              Json(q.s), Json(q.y)});
+        const bool stopped = r.status == "eq. 5.4" || r.status == "stopped";
+        // How far the centroids came toward each other along d (before any sliding past).
+        double closest = r.series.front().separation;
+        for (const Sample& m : r.series) closest = std::min(closest, std::abs(m.separation));
+        const double approach = r.series.front().separation - closest;
+        // The time per step: this sitting's if it stepped, else every sitting's.
+        const double sps = r.steps_this_sitting > 0 ? r.seconds_this_sitting / r.steps_this_sitting : (r.steps > 0 ? r.seconds / r.steps : NAN);
+        const long to_go = r.status == "running" ? std::lround((s.t_end - r.t) / s.dt) : 0;
+        const double hours = to_go * sps / 3600;
+        total_hours_to_go += std::isfinite(hours) ? hours : 0;
+        if (std::isfinite(sps) && s.limited == full) per_step.push_back(sps);
+        runs["rows"].push(Json::Array{Json(o.id), Json(h_um), Json(s.n_sample), Json(s.dt / units::ns), Json(r.status),
+                                      Json(double(r.steps)), Json(r.t / units::us), stopped ? Json(r.t / units::us) : Json(),
+                                      Json(r.series.front().min_gap / s.h), Json(gmin / units::um), Json(gmin / s.h), Json(tmin / units::us),
+                                      Json(approach / units::um), Json(approach / s.h), Json(vmax), Json(r.seconds), Json(sps),
+                                      Json(double(to_go)), Json(hours)});
+        fig_rows[k].insert(fig_rows[k].end(), {Json(r.status), Json(r.t / units::ms), stopped ? Json(r.t / units::ms) : Json()});
+        ++k;
+        worst_gap = std::min(worst_gap, gmin / s.h);
+        worst_volume = std::max(worst_volume, vmax);
+        // Approach counts for runs that ended (a run stopped early in a sitting has barely moved).
+        if (r.status != "running") least_approach = std::isnan(least_approach) ? approach / s.h : std::min(least_approach, approach / s.h);
+        stopped54 += r.status == "eq. 5.4";
+        ended += r.status != "running";
+        if (!r.message.empty()) results["parameters"]["stop_" + s.label + "_" + o.id] = r.message;
+      }
+    }
+    for (auto& row : fig_rows) fig["rows"].push(Json(row));
+
+    // ---- 3. Results -------------------------------------------------------------------------------
+    Json& V = results["values"];
+    V["min_gap_over_h"] = worst_gap;                // the closest any pair came, in units of h
+    V["min_approach_over_h"] = std::isnan(least_approach) ? Json() : Json(least_approach);  // the ended run that came least far
+    V["max_volume_change_rel"] = worst_volume;
+    V["runs_stopped_by_eq54"] = stopped54;
+    V["max_eq54_ratio"] = peak54;                   // dt over eq. 5.4's bound: 1 stops a run
+    V["runs_ended"] = ended;
+    V["seconds_per_step"] = st::median(per_step);   // at the scale's own resolution (full: the seed's)
+    V["hours_to_go"] = total_hours_to_go;
+    results["tables"]["runs"] = runs;
+    results["tables"]["gap_series"] = series;
+    results["tables"]["fig53"] = fig;
+    results["tables"]["outlines"] = outlines;
+    st::write_results(opt, results);
+    return 0;
+  });
+}
