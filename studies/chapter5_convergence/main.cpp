@@ -10,12 +10,15 @@
 //      the sphere (eq. 2.22, phi = r), L_inf of eq. 5.3;
 // and orders p from successive ratios by the seed's formula
 //   eps_r / eps_{r+1} = |((r+1)/r)^p - 1| / |((r+2)/(r+1))^{-p} - 1|, solved for p.
+// Each grid's run is built from a scene (docs/scenes.md) kept beside the results as
+// DIR/scene_r<r>.yaml, which `build/bin/rbfib run` reruns.
 //
 // Run:   build/studies/study_chapter5_convergence --scale quick --out runs/chapter5_convergence
 #include "common/study.hpp"
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
+#include "rbfib/scene/scene.hpp"
 #include "rbfib/sim/ib_step.hpp"
 #include "rbfib/surface/geometry.hpp"
 #include "rbfib/surface/point_sets.hpp"
@@ -57,25 +60,32 @@ struct Run {
   std::string commit;  // the commit that computed it
 };
 
+/// Grid r's setup as a scene (docs/scenes.md), in CGS to 17 digits so that it reads back exactly;
+/// kept beside the results, where `rbfib run` reruns it.
+std::string scene_text(int r, double t_end) {
+  const std::string L = to_text(16 * units::um) + " cm", c = to_text(8 * units::um) + " cm", n = to_text(20 * r);
+  return "# chapter5_convergence: a stretched red cell (Skalak only) relaxing in a channel (Sec. 5.1.1), r = " + to_text(r) + "\n"
+         "domain:\n  size: [" + L + ", " + L + ", " + L + "]\n  periodic: [x, z]\n"
+         "  walls:\n    y: {lower: [0 cm/s, 0 cm/s, 0 cm/s], upper: [0 cm/s, 0 cm/s, 0 cm/s]}\n"
+         "fluid: {density: 1 g/cm^3, viscosity: " + to_text(0.1 * units::cP) + " P}\n"
+         "grid: {cells: [" + n + ", " + n + ", " + n + "]}\n"
+         "time: {integrator: peskin_two_stage, dt: " + to_text(180 * units::ns / r) + " s, end: " + to_text(t_end) + " s}\n"
+         "ib: {kernel: roma3}\n"
+         "cell_types:\n  - name: red cell (Skalak only)\n    preset: red_cell\n    data_sites: " + to_text(125 * r * r) +
+         "\n    sample_sites: " + to_text(500 * r * r) + "\n    model: {elastic: [{law: skalak, E: " + to_text(cells::seed::red_cell_E) +
+         " dyn/cm, G: " + to_text(cells::seed::red_cell_G) + " dyn/cm}]}\n"
+         "cells:\n  - {type: red cell (Skalak only), center: [" + c + ", " + c + ", " + c + "], stretch: [" + to_text(1 / 1.1) + ", 1, " +
+         to_text(1.1) + "]}\n";
+}
+
 Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& eval, const st::Options& opt) {
-  const double L = 16 * units::um;
-  const MacGrid g = make_mac_grid(3, {20 * r, 20 * r, 20 * r}, {L, L, L},
-                                  {MacBoundary::periodic, MacBoundary::dirichlet, MacBoundary::periodic});
-  NavierStokesOptions o;
-  o.dt = 180 * units::ns / r;
-  o.integrator = TimeIntegrator::peskin_two_stage;
-  sim::IbOptions io;
-  io.kernel = "roma3";
-  sim::ImmersedBoundary ib(g, FluidParameters{1.0, 0.1 * units::cP}, o, {}, io);
-  cells::CellTypeSpec spec = cells::red_cell_spec(125 * r * r, 500 * r * r);
-  spec.name = "red cell (Skalak only)";
-  spec.model.kappa = 0;
-  spec.model.nu = 0;
-  const auto type = std::make_shared<const cells::CellType>(spec);
-  cells::Placement p;
-  p.center = {8 * units::um, 8 * units::um, 8 * units::um};
-  p.stretch = {1 / 1.1, 1.0, 1.1};
-  ib.add(cells::Batch(type, {p}));
+  const std::string text = scene_text(r, t_end), file = "scene_r" + to_text(r) + ".yaml";
+  std::ofstream(opt.out_dir + "/" + file) << text;
+  const scene::Scene sc = scene::parse_scene(text, file);
+  sim::ImmersedBoundary ib = scene::build(sc);
+  const NavierStokesOptions& o = sc.fluid_options;
+  const sim::IbOptions& io = sc.ib;
+  const cells::CellTypeSpec& spec = ib.batch(0).type().spec();
   cells::CellForces f;
   cells::compute_forces(ib.batch(0), f);
   const double v0 = f.cells.volume[0];
