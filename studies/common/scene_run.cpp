@@ -52,13 +52,19 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   sim::ImmersedBoundary ib = scene::build(scene);
   if (hooks.at_start) hooks.at_start(ib);
   SceneRun r;
-  const std::string ckpt = opt.out_dir + "/checkpoint_" + tag + ".h5", samples = opt.out_dir + "/samples_" + tag + ".txt";
+  const std::string ckpt = opt.out_dir + "/checkpoint_" + tag + ".h5", samples = opt.out_dir + "/samples_" + tag + ".txt",
+                    stopped = opt.out_dir + "/stopped_" + tag + ".txt";
   if (resumable && std::filesystem::exists(ckpt)) {
     scene::Checkpoint c = scene::read_checkpoint(ckpt);
     if (c.scene_yaml == text) {
       ib.restore(c.state);
       r.samples = load_rows(samples, ib.time());
-      log(opt, tag + ": continuing from " + ckpt + " at t = " + to_text(ib.time() / units::ms) + " ms");
+      if (std::ifstream f(stopped); f) {  // stopped in an earlier sitting: the same failure would recur
+        std::getline(f, r.stopped);
+        log(opt, tag + ": stopped in an earlier sitting at t = " + to_text(ib.time() / units::ms) + " ms: " + r.stopped);
+      } else {
+        log(opt, tag + ": continuing from " + ckpt + " at t = " + to_text(ib.time() / units::ms) + " ms");
+      }
     }
   }
   if (r.samples.empty()) {
@@ -69,7 +75,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   const auto t0 = clock::now();
   auto last_log = t0, last_save = t0;
   try {
-    while (ib.step_count() < total) {
+    while (r.stopped.empty() && ib.step_count() < total) {
       const sim::IbStepReport rep = ib.step();
       ++r.steps_timed;
       r.min_bound = std::min(r.min_bound, rep.dt_bound);
@@ -95,9 +101,10 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   }
   r.seconds = std::chrono::duration<double>(clock::now() - t0).count();
   r.steps = ib.step_count();
-  if (resumable && r.stopped.empty()) {
+  if (resumable) {  // the end, or the last good state before a failure
     scene::write_checkpoint(ckpt, text, ib);
     save_rows(samples, r.samples);
+    if (!r.stopped.empty()) std::ofstream(stopped) << r.stopped << "\n";
   }
   for (index_t b = 0; b < ib.batches(); ++b) r.final_positions.push_back(ib.batch(b).positions_host());
   return r;

@@ -4,7 +4,9 @@
 // a numerical failure (eq. 5.4, a degenerate cell) ends the run early and is reported, not thrown.
 // Resumable runs (full scale) write DIR/checkpoint_<tag>.h5 (scene/checkpoint.hpp) and their
 // samples (DIR/samples_<tag>.txt, one row of numbers per line) every five minutes of wall time and
-// at the end, and continue from them when started again with the same scene text.
+// at the end, and continue from them when started again with the same scene text; a run stopped by
+// a numerical failure keeps its last good state and the message (DIR/stopped_<tag>.txt) and is not
+// stepped again.
 #include "common/study.hpp"
 #include "rbfib/sim/ib_step.hpp"
 
