@@ -11,11 +11,12 @@
 //
 // Part 2, the whole-blood-size step (Sec. 5.2): 16 x 12 x 16 um, h = 0.2 um (80 x 60 x 80),
 // periodic in x and z, walls in y, the top one moving (shear 1000/s), B3 kernel, backward-forward
-// Euler, dt = 25 ns (the seed's 50 ns is unstable with its endothelium here: see the reference);
-// 8 red cells (Skalak, bending, dissipation; 2,500 / 10,000 sites at full
-// scale, 625 / 2,500 at quick scale) in the two rows of Sec. 5.2.1 without its random moves,
-// 2 platelets (neo-Hookean, bending about the reference curvature; 900 / 900) 0.3 um above a flat
-// endothelium of 16,000 tethered points at y = 1 um (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm).
+// Euler, dt = 50 ns, plasma of 1 cP (the seed's code: at the 0.1 cP of Sec. 2.1 the seed's
+// endothelium is unstable at 50 ns, see the reference); 8 red cells (Skalak, bending,
+// dissipation; 2,500 / 10,000 sites at full scale, 625 / 2,500 at quick scale) in the two rows of
+// Sec. 5.2.1 without its random moves, 2 platelets (neo-Hookean, bending about the reference
+// curvature; 900 / 900) 0.3 um above a flat endothelium of 16,000 tethered points at y = 1 um
+// (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm); built from a scene kept beside the results.
 // Reports the step's split, the dense products of the force calls against a DGEMM measured in
 // the same run, and every cell's volume change.
 //
@@ -26,6 +27,7 @@
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/grid/box.hpp"
+#include "rbfib/scene/scene.hpp"
 #include "rbfib/sim/ib_step.hpp"
 
 #include <omp.h>
@@ -33,6 +35,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <memory>
 
 using namespace rbfib;
@@ -56,12 +59,12 @@ std::vector<cells::Placement> stacked(index_t count) {
   return p;
 }
 
-/// The steady shear u_x = shear (y - y_mid) with walls at y = 0 and L_y moving at -+ shear L_y / 2
-/// (Part 1) or u_x = shear y with the bottom wall at rest (Part 2), and the flow set to it.
-sim::ImmersedBoundary sheared(const MacGrid& g, double dt, double y_zero, sim::IbOptions io) {
+/// Part 1's flow: the steady shear u_x = shear (y - L_y / 2) with walls at y = 0 and L_y moving at
+/// -+ shear L_y / 2, and the flow set to it.
+sim::ImmersedBoundary sheared(const MacGrid& g, double dt, sim::IbOptions io) {
   NavierStokesOptions o;
   o.dt = dt;
-  const double Ly = g.length[1];
+  const double Ly = g.length[1], y_zero = Ly / 2;
   auto wall = [=](int a, int d, int side, double, double, double, double) {
     return a == 0 && d == 1 ? shear * ((side ? Ly : 0.0) - y_zero) : 0.0;
   };
@@ -181,7 +184,7 @@ int main(int argc, char** argv) {
       for (index_t N : {index_t(1), index_t(2), index_t(4), index_t(8)}) {
         sim::IbOptions io;
         io.kernel = "bspline3";
-        sim::ImmersedBoundary ib = sheared(g1, 0.1 * units::us, 8 * um, io);
+        sim::ImmersedBoundary ib = sheared(g1, 0.1 * units::us, io);
         ib.add(cells::Batch(rbc864, stacked(N)));
         // Per call: interpolation at the data sites, spreading from the sample sites of the forces.
         ib::Interaction probe({ib.fluid().operators().component_box(0), ib.fluid().operators().component_box(1),
@@ -250,51 +253,40 @@ int main(int argc, char** argv) {
     // ---- Part 2: the whole-blood-size step ------------------------------------------------------
     omp_set_num_threads(max_threads);
     const index_t rbc_nd = full ? 2500 : 625, rbc_ns = full ? 10000 : 2500;
-    const MacGrid g2 = make_mac_grid(3, {80, 60, 80}, {16 * um, 12 * um, 16 * um}, {MB::periodic, MB::dirichlet, MB::periodic});
     P["whole_blood_box_um"] = "16 x 12 x 16 (x, z periodic; walls in y, the top one at 12 mm/s: shear 1000/s)";
     P["whole_blood_grid"] = "80 x 60 x 80, h = 0.2 um";
     P["whole_blood_red_cells"] = "8 at " + to_text(rbc_nd) + " / " + to_text(rbc_ns) + " sites (Skalak, bending, dissipation)";
     P["whole_blood_platelets"] = "2 at 900 / 900 sites (neo-Hookean, bending about the reference curvature)";
     P["whole_blood_endothelium"] = "16,000 tethered points (128 x 125 lattice) at y = 1 um, k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm";
-    P["whole_blood_dt_ns"] = 25;
-    sim::IbOptions io;
-    io.kernel = "bspline3";
-    // dt = 25 ns, half the seed's 50 ns: at 50 ns the endothelium with the seed's k and eta is
-    // unstable in this coupling at 0.1 cP (its force grows about 15% a step; at 1 cP it is
-    // stable); the step's cost does not depend on dt.
-    sim::ImmersedBoundary ib = sheared(g2, 25 * units::ns, 0.0, io);
+    P["whole_blood_dt_ns"] = 50;
+    P["whole_blood_fluid"] = "rho = 1 g/cm^3, mu = 1 cP (the seed's code; at 0.1 cP its endothelium is unstable at 50 ns)";
+    // The scene (docs/scenes.md), kept beside the results, where `rbfib run` reruns it: two rows of
+    // four red cells at y = 6 um, concavities facing z, the rows staggered by 2 um; platelets lying
+    // flat (1 um thick) 0.3 um above the endothelium, between the rows (under a red cell at
+    // x = 12 um the rim, 2.1 um above the wall, would cut the platelet).
+    std::string cells_text;
+    for (int c = 0; c < 8; ++c)
+      cells_text += "  - {type: red cell, center: [" + to_text(4 + 8 * (c / 4)) + " um, 6 um, " + to_text(2 + 4 * (c % 4) + 2 * (c / 4)) + " um]}\n";
+    for (int c = 0; c < 2; ++c)  // between the rows, clear of the red cells' rims
+      cells_text += "  - {type: platelet, center: [8 um, 1.8 um, " + to_text(4 + 8 * c) + " um], axis: [1, 0, 0], angle: 90 deg}\n";
+    const std::string text =
+        "# chapter4_cells: the whole-blood-size step (Sec. 5.2)\n"
+        "name: whole_blood_step\n"
+        "domain:\n  size: [16 um, 12 um, 16 um]\n  periodic: [x, z]\n"
+        "  walls:\n    y: {lower: [0 mm/s, 0 mm/s, 0 mm/s], upper: [0 mm/s, 0 mm/s, 12 mm/s]}\n  initial_flow: shear\n"
+        "fluid: {density: 1 g/cm^3, viscosity: 1 cP}\n"
+        "grid: {cells: [80, 60, 80]}\n"
+        "time: {integrator: backward_forward_euler, dt: 50 ns, end: 1 ms}\n"
+        "ib: {kernel: bspline3}\n"
+        "cell_types:\n  - {name: red cell, preset: red_cell, data_sites: " + to_text(rbc_nd) + ", sample_sites: " + to_text(rbc_ns) + "}\n"
+        "  - {name: platelet, preset: platelet, data_sites: 900, sample_sites: 900}\n"
+        "cells:\n" + cells_text +
+        "tethered_points:\n  - {name: endothelium, plane: {y: 1 um, points: [128, 125]}, k: 2.5 dyn/cm, eta: 2.5e-7 dyn s/cm}\n";
+    std::ofstream(opt.out_dir + "/scene_whole_blood.yaml") << text;
     t0 = std::chrono::steady_clock::now();
-    const auto rbc = cells::red_cell(rbc_nd, rbc_ns);
-    const auto plt = cells::platelet(900, 900);
-    st::log(opt, "2. " + rbc->describe() + "; " + plt->describe() + " (built in " +
+    sim::ImmersedBoundary ib = scene::build(scene::parse_scene(text, "scene_whole_blood.yaml"));
+    st::log(opt, "2. " + ib.batch(0).type().describe() + "; " + ib.batch(1).type().describe() + " (scene built in " +
                      to_text(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()) + " s)");
-    // Two rows of four red cells at y = 6 um, concavities facing z, the rows staggered by 2 um.
-    std::vector<cells::Placement> reds(8);
-    for (index_t c = 0; c < 8; ++c) reds[c].center = {(4.0 + 8.0 * double(c / 4)) * um, 6 * um, (2.0 + 4.0 * double(c % 4) + 2.0 * double(c / 4)) * um};
-    // Platelets with their short axis along y, 0.3 um above the endothelium.
-    std::vector<cells::Placement> plates(2);
-    for (index_t c = 0; c < 2; ++c) {
-      plates[c].center = {(4.0 + 8.0 * double(c)) * um, (1.0 + 0.3 + 0.25) * um, (4.0 + 8.0 * double(c)) * um};
-      plates[c].axis = {1, 0, 0};
-      plates[c].angle = 1.5707963267948966;
-    }
-    ib.add(cells::Batch(rbc, reds));
-    ib.add(cells::Batch(plt, plates));
-    sim::TetheredPoints wall;
-    wall.name = "endothelium";
-    const int nx = 128, nz = 125;
-    wall.X.resize(3 * nx * nz);
-    for (int i = 0; i < nx; ++i)
-      for (int k = 0; k < nz; ++k) {
-        const index_t q = index_t(i) * nz + k, n = index_t(nx) * nz;
-        wall.X[q] = (i + 0.5) * 16 * um / nx;
-        wall.X[n + q] = 1 * um;
-        wall.X[2 * n + q] = (k + 0.5) * 16 * um / nz;
-      }
-    wall.anchors = wall.X;
-    wall.k = 2.5;
-    wall.eta = 2.5e-7;
-    ib.add(std::move(wall));
     const StepSplit s = time_steps(ib, steps);
     const double step = s.total();
     V["whole_blood_step_seconds"] = step;
