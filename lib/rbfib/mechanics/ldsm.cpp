@@ -24,6 +24,11 @@ void gram(const double u[2][3], double G[2][2]) {
 
 LdsmResult ldsm_forces(const std::string& cell, const std::vector<surface::Triangle>& tris,
                        const std::vector<double>& Z, const std::vector<double>& X, const EnergyDensity& energy) {
+  return ldsm_forces(cell, tris, Z, X, std::vector<EnergyDensity>{energy});
+}
+
+LdsmResult ldsm_forces(const std::string& cell, const std::vector<surface::Triangle>& tris,
+                       const std::vector<double>& Z, const std::vector<double>& X, const std::vector<EnergyDensity>& energies) {
   require(X.size() == Z.size(), "cell '" + cell + "' current points size", X.size(),
           "must equal reference size " + to_text(Z.size()));
   LdsmResult r;
@@ -31,7 +36,8 @@ LdsmResult ldsm_forces(const std::string& cell, const std::vector<surface::Trian
   const index_t nv = static_cast<index_t>(X.size() / 3);
   for (std::size_t t = 0; t < tris.size(); ++t) {
     for (index_t v : tris[t])
-      require(v >= 0 && v < nv, "cell '" + cell + "' triangle " + to_text(t) + " vertex", v, "out of range");
+      if (v < 0 || v >= nv)  // (the message is built only on failure: this loop is the hot path)
+        throw InputError("cell '" + cell + "' triangle " + to_text(t) + " vertex", to_text(v), "out of range");
     double u[2][3], u0[2][3], G[2][2], G0[2][2];
     edges(X, tris[t], u);
     edges(Z, tris[t], u0);
@@ -51,9 +57,13 @@ LdsmResult ldsm_forces(const std::string& cell, const std::vector<surface::Trian
     inverse2(G, det, Gi);
     inverse2(G0, det0, G0i);
     const double J2 = det / det0;
-    const InvariantDerivatives w = energy.evaluate(trace_ab(G, G0i) - 2, J2 - 1);
-    if (!w.valid)
-      throw NumericalError("cell '" + cell + "': LDSM triangle " + to_text(t) + ": energy undefined (det C <= 0)");
+    InvariantDerivatives w{0, 0, 0, 0, 0, 0, true};
+    for (const EnergyDensity& e : energies) {
+      const InvariantDerivatives we = e.evaluate(trace_ab(G, G0i) - 2, J2 - 1);
+      if (!we.valid)
+        throw NumericalError("cell '" + cell + "': LDSM triangle " + to_text(t) + ": energy undefined (det C <= 0)");
+      w.W += we.W, w.W1 += we.W1, w.W2 += we.W2;
+    }
     const double A0 = 0.5 * std::sqrt(det0);
     r.energy += w.W * A0;
     double dW[2][3] = {{0, 0, 0}, {0, 0, 0}};

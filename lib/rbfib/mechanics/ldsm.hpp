@@ -21,9 +21,13 @@ struct LdsmResult {
 };
 
 /// Throws NumericalError naming the cell and triangle for a degenerate (zero-area) or inverted
-/// (normal flipped with respect to the reference) triangle.
+/// (normal flipped with respect to the reference) triangle, InputError for a vertex out of range.
 LdsmResult ldsm_forces(const std::string& cell, const std::vector<surface::Triangle>& tris,
                        const std::vector<double>& Z, const std::vector<double>& X, const EnergyDensity& energy);
+/// The same for a sum of energies (e.g. neo-Hookean + tension, paper Sec. 4.2) in one pass: W, W_1
+/// and W_2 are sums over the energies.
+LdsmResult ldsm_forces(const std::string& cell, const std::vector<surface::Triangle>& tris,
+                       const std::vector<double>& Z, const std::vector<double>& X, const std::vector<EnergyDensity>& energies);
 
 /// Vertex area weights, eq. (67): one third of the reference areas of the triangles around it
 /// (the printed eq. 67 omits the 1/2 of the triangle area; we use the area, as its text says).
