@@ -1,0 +1,404 @@
+#include "chapter3_dynamics/relaxation.hpp"
+
+#include "rbfib/cells/batch.hpp"
+#include "rbfib/cells/shapes.hpp"
+#include "rbfib/core/error.hpp"
+#include "rbfib/fluid/periodic_stokes.hpp"
+#include "rbfib/ib/interaction.hpp"
+#include "rbfib/linalg/blas.hpp"
+#include "rbfib/mechanics/ldsm.hpp"
+#include "rbfib/surface/geometry.hpp"
+#include "rbfib/surface/operators.hpp"
+#include "rbfib/surface/quadrature.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+
+namespace rbfib::chapter3_dynamics {
+
+namespace {
+using clock_type = std::chrono::steady_clock;
+double since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
+
+/// The Eulerian side: the periodic MAC grid on [-L, L]^3, the exact Stokes solver (alpha = 0) and
+/// the kernel's interpolation and spreading.
+struct Fluid {
+  MacGrid grid;
+  PeriodicStokesSolver stokes;
+  ib::Interaction ib;
+  VectorField f, u;
+  dvec p;
+  Fluid(int eta, double L, double mu, const std::string& kernel)
+      : grid(periodic_grid(eta, L)),
+        stokes(grid, mu, 0.0),
+        ib({stokes.operators().component_box(0), stokes.operators().component_box(1),
+            stokes.operators().component_box(2)},
+           kernel) {}
+  static MacGrid periodic_grid(int eta, double L) {
+    require(eta >= 4, "grid size eta", eta, "must be >= 4");
+    MacGrid g = make_mac_grid(3, {eta, eta, eta}, {2 * L, 2 * L, 2 * L},
+                              {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
+    g.origin = {-L, -L, -L};
+    return g;
+  }
+};
+
+/// Centroid of the volume enclosed by the triangulated surface X (n x 3 column-major), and the volume.
+void polyhedron_centroid(const std::vector<surface::Triangle>& tris, const std::vector<double>& X, double c[3],
+                         double& volume) {
+  const std::size_t n = X.size() / 3;
+  double m[3] = {0, 0, 0};
+  volume = 0;
+  for (const auto& t : tris) {
+    double a[3], b[3], d[3], bxd[3];
+    for (int k = 0; k < 3; ++k) {
+      a[k] = X[k * n + t[0]];
+      b[k] = X[k * n + t[1]];
+      d[k] = X[k * n + t[2]];
+    }
+    surface::cross3(b, d, bxd);
+    const double v = surface::dot3(a, bxd) / 6;  // the tetrahedron (0, a, b, d)
+    volume += v;
+    for (int k = 0; k < 3; ++k) m[k] += v * (a[k] + b[k] + d[k]) / 4;
+  }
+  for (int k = 0; k < 3; ++k) c[k] = m[k] / volume;
+}
+
+/// The diagnostics of the header from the evaluation sites' positions Xs (n x 3), the x coordinate
+/// x_axis of the material point (0, 0), and the centroid c.
+Sample sample(double t, const std::vector<double>& Xs, double x_axis, const double c[3], double volume, double axis0) {
+  const std::size_t n = Xs.size() / 3;
+  Sample s{t, 0, 0, 0, volume};
+  double rmax = 0, rmin = INFINITY;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double dx = Xs[i] - c[0], dy = Xs[n + i] - c[1], dz = Xs[2 * n + i] - c[2];
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+    rmax = std::max(rmax, r);
+    rmin = std::min(rmin, r);
+  }
+  s.r_max = rmax - 1;  // minus the reference radius (Fig. 4 caption)
+  s.r_min = rmin - 1;
+  s.d_axis = (x_axis - c[0]) - axis0;
+  return s;
+}
+
+/// Per-step times of each phase, and their medians.
+struct PhaseLog {
+  std::vector<double> forces, products, spread, solve, interpolate, update;
+  static double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    const std::size_t h = v.size() / 2;
+    return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
+  }
+  PhaseTimes medians() const {
+    PhaseTimes p;
+    p.forces = median(forces);
+    p.force_products = median(products);
+    p.spread = median(spread);
+    p.solve = median(solve);
+    p.interpolate = median(interpolate);
+    p.update = median(update);
+    return p;
+  }
+};
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+/// |sum_i F^_i|_inf (F n x 3 column-major).
+double force_integral(const std::vector<double>& F) {
+  const std::size_t n = F.size() / 3;
+  double s[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < F.size(); ++i) s[i / n] += F[i];
+  return std::max({std::abs(s[0]), std::abs(s[1]), std::abs(s[2])});
+}
+
+void require_finite(const dvec& U, const std::string& who, int step) {
+  if (!blas::all_finite(U)) throw NumericalError(who + ": non-finite interpolated velocity at step " + to_text(step));
+}
+}  // namespace
+
+const char* to_string(Method m) { return m == Method::shvd ? "SHVD" : "LDSM"; }
+
+EvaluationSet make_evaluation_set(index_t n) {
+  require(n >= 5 && n % 2 == 1, "evaluation set size n", n, "must be odd and >= 5 (a Bauer-spiral site on the x axis)");
+  const auto t0 = clock_type::now();
+  EvaluationSet e;
+  e.family = "spiral";
+  e.sites = surface::bauer_spiral(n);
+  // Site j = (n + 1)/2 (1-based) has latitude asin(0) = 0 and longitude mod(pi, 2 pi) - pi = 0.
+  e.axis_site = (n + 1) / 2 - 1;
+  if (e.sites.lambda[e.axis_site] != 0.0 || e.sites.theta[e.axis_site] != 0.0)
+    throw NumericalError("Bauer spiral of " + to_text(n) + " sites: site " + to_text(e.axis_site) +
+                         " is not at (lambda, theta) = (0, 0)");
+  const surface::RbfWeights q = surface::rbf_sphere_weights(e.sites, 3);
+  e.w = q.w;
+  e.rcond = q.rcond;
+  e.tris = surface::sphere_triangulation(e.sites);
+  e.Z = surface::ellipsoid(1, 1, 1).points(e.sites);
+  e.seconds = since(t0);
+  return e;
+}
+
+std::vector<mechanics::EnergyDensity> total_energy(double Gs, double A, double sigma) {
+  return {mechanics::EnergyDensity::neo_hookean_paper(Gs, A), mechanics::EnergyDensity::surface_tension(sigma)};
+}
+
+EvaluationSet make_md_evaluation_set(const std::string& file, int N) {
+  const auto t0 = clock_type::now();
+  EvaluationSet e;
+  e.family = "MD";
+  e.sites = surface::read_sphere_sites(file);
+  const index_t n = e.sites.size();
+  require(n == index_t(N + 1) * (N + 1), file + ": number of sites", n,
+          "must be (N+1)^2 = " + to_text((N + 1) * (N + 1)));
+  const surface::NnlsWeights q = surface::nnls_sh_weights(e.sites, N);
+  if (!(q.residual < 1e-10))
+    throw NumericalError("eq. (45) weights on " + file + ": NNLS residual " + to_text(q.residual));
+  e.w = q.w;
+  e.eq45_residual = q.residual;
+  e.tris = surface::sphere_triangulation(e.sites);
+  e.Z = surface::ellipsoid(1, 1, 1).points(e.sites);
+  // The triangle met by the ray of (1, 0, 0): e_x = a A + b B + c C with a, b, c >= 0.
+  bool found = false;
+  for (const surface::Triangle& t : e.tris) {
+    double P[3][3];
+    for (int v = 0; v < 3; ++v)
+      for (int d = 0; d < 3; ++d) P[v][d] = e.Z[d * n + t[v]];
+    // Cramer's rule for [A B C] w = e_x.
+    auto det3 = [](const double* a, const double* b, const double* c) {
+      return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+             a[2] * (b[0] * c[1] - b[1] * c[0]);
+    };
+    const double ex[3] = {1, 0, 0};
+    const double D = det3(P[0], P[1], P[2]);
+    const double w[3] = {det3(ex, P[1], P[2]) / D, det3(P[0], ex, P[2]) / D, det3(P[0], P[1], ex) / D};
+    if (w[0] >= 0 && w[1] >= 0 && w[2] >= 0) {
+      const double sum = w[0] + w[1] + w[2];
+      e.axis_triangle = t;
+      for (int v = 0; v < 3; ++v) e.axis_weights[v] = w[v] / sum;
+      found = true;
+      break;
+    }
+  }
+  if (!found) throw NumericalError(file + ": no triangle meets the ray of (1, 0, 0)");
+  e.seconds = since(t0);
+  return e;
+}
+
+const surface::SphereSites& interpolation_sites(int M) {
+  static std::map<int, surface::SphereSites> cache;
+  auto it = cache.find(M);
+  if (it == cache.end()) it = cache.emplace(M, surface::max_determinant_points(M).sites).first;
+  return it->second;
+}
+
+struct Relaxation::Impl {
+  RelaxationSpec spec;
+  const EvaluationSet& eval;
+  Fluid fluid;
+  std::vector<mechanics::EnergyDensity> energies;
+  RelaxationResult r;
+  PhaseLog per_step;
+  int k = 0;
+  bool done = false;
+  double axis0 = 0;
+  ib::SortedPoints at_eval, at_interp;
+  dvec U;
+  // SHVD: the batch of one cell (its state: the m interpolation sites), the force call's output
+  std::unique_ptr<cells::Batch> batch;
+  std::shared_ptr<const surface::SurfaceOperators> axis_ops;  // the interpolant at (0, 0)
+  cells::CellForces out;
+  cells::ForceTimings ft;
+  // LDSM: the n sites on the host (the force loop) and their copies for the interaction
+  std::vector<double> X, F, Uh;
+  dvec Xd, Fd;
+
+  Impl(const RelaxationSpec& s, const EvaluationSet& e)
+      : spec(s), eval(e), fluid(s.eta, s.L, s.mu, s.kernel), energies(total_energy(s.Gs, s.A, s.sigma)) {
+    require(spec.steps >= 0, "steps", spec.steps, "must be >= 0");
+    require(spec.dt > 0, "time step dt", spec.dt, "must be > 0");
+    if (spec.method == Method::shvd) {
+      // The cell type: unit-sphere reference, the degree-M interpolant through the m sites (LU of
+      // Y once), the n evaluation sites with their weights, the total energy of Sec. 4.2.
+      cells::CellTypeSpec ts;
+      ts.name = "SHVD m = " + to_text((spec.M + 1) * (spec.M + 1));
+      ts.shape = cells::ellipsoid_shape(1, 1, 1);
+      ts.data_sites = interpolation_sites(spec.M);
+      ts.sample_sites = eval.sites;
+      ts.interpolant = cells::Interpolant::spherical_harmonics;
+      ts.sh_degree = spec.M;
+      ts.sphere_weights = eval.w;
+      ts.model.elastic = energies;
+      batch = std::make_unique<cells::Batch>(std::make_shared<const cells::CellType>(ts),
+                                             std::vector<cells::Placement>{cells::Placement{}});
+      surface::SphereSites axis;
+      axis.lambda = {0.0};
+      axis.theta = {0.0};
+      axis_ops = surface::sh_operators(ts.data_sites, axis, spec.M);
+      const std::vector<double> X0 = spec.shape.points(ts.data_sites);  // eq. (88) or (89) at the m sites
+      thrust::copy(X0.begin(), X0.end(), batch->state().storage().begin());
+    } else {
+      X = spec.shape.points(eval.sites);
+      Uh.resize(X.size());
+      Xd.resize(X.size());
+      Fd.resize(X.size());
+    }
+  }
+
+  bool record_now() const { return k == 0 || k == spec.steps || (spec.record_every > 0 && k % spec.record_every == 0); }
+  void record(const std::vector<double>& Xs, double x_axis, const double c[3], double volume) {
+    if (k == 0) axis0 = x_axis - c[0];
+    r.series.push_back(sample(k * spec.dt, Xs, x_axis, c, volume, axis0));
+  }
+  static void add(double& sum, std::vector<double>& steps, double t) {
+    sum += t;
+    steps.push_back(t);
+  }
+
+  /// Forces at X^k (and the diagnostics when due); then, unless k = steps, the step to X^{k+1}.
+  void advance_shvd() {
+    const index_t n = eval.size(), m = batch->type().n_data();
+    auto t0 = clock_type::now();
+    cells::compute_forces(*batch, out, &ft);  // steps 1-2 (and F^ = F dA0)
+    const double t_forces = since(t0);
+    if (k == 0) {
+      const std::vector<double> F0 = out.force.to_host();
+      r.force_integral0 = force_integral(F0);
+      r.max_force0 = max_abs(F0);
+    }
+    if (record_now()) {
+      const double c[3] = {out.cells.centroid[0][0], out.cells.centroid[0][1], out.cells.centroid[0][2]};
+      // the material point (0, 0) on the interpolant (an evaluation site of the spirals)
+      const double x_axis = surface::jets_from_operators(*axis_ops, batch->positions_host())[0].x[0];
+      record(out.positions.to_host(), x_axis, c, out.cells.volume[0]);
+    }
+    if (k == spec.steps) return;
+    add(r.phases.forces, per_step.forces, t_forces);
+    add(r.phases.force_products, per_step.products, ft.products());
+    t0 = clock_type::now();  // step 3: spread from the evaluation sites
+    fluid.ib.sort(ptr(out.positions.storage()), n, at_eval);
+    fluid.ib.spread(at_eval, ptr(out.force.storage()), fluid.f);
+    add(r.phases.spread, per_step.spread, since(t0));
+    t0 = clock_type::now();  // step 4
+    fluid.stokes.solve(fluid.f, fluid.u, fluid.p);
+    add(r.phases.solve, per_step.solve, since(t0));
+    t0 = clock_type::now();                      // step 5: velocity at the interpolation sites
+    double* Xm = ptr(batch->state().storage());  // positions: the first 3m entries
+    fluid.ib.sort(Xm, m, at_interp);
+    U.resize(static_cast<std::size_t>(3 * m));
+    fluid.ib.interpolate(at_interp, fluid.u, ptr(U));
+    add(r.phases.interpolate, per_step.interpolate, since(t0));
+    t0 = clock_type::now();  // step 6, eq. (87)
+    require_finite(U, "SHVD", k);
+    const double dt = spec.dt;
+    const double* Up = ptr(U);
+    for_each_index(3 * m, [=] RBFIB_HD(index_t i) { Xm[i] += dt * Up[i]; });
+    add(r.phases.update, per_step.update, since(t0));
+  }
+
+  void advance_ldsm() {
+    const index_t n = eval.size();
+    auto t0 = clock_type::now();
+    F = mechanics::ldsm_forces("LDSM", eval.tris, eval.Z, X, energies).F;  // eq. (66)
+    const double t_forces = since(t0);
+    if (k == 0) {
+      r.force_integral0 = force_integral(F);
+      r.max_force0 = max_abs(F);
+    }
+    if (record_now()) {
+      double c[3], volume;
+      polyhedron_centroid(eval.tris, X, c, volume);
+      double x_axis = 0;  // the material point (0, 0) on the piecewise-linear surface
+      if (eval.axis_site >= 0)
+        x_axis = X[eval.axis_site];
+      else
+        for (int v = 0; v < 3; ++v) x_axis += eval.axis_weights[v] * X[eval.axis_triangle[v]];
+      record(X, x_axis, c, volume);
+    }
+    if (k == spec.steps) return;
+    add(r.phases.forces, per_step.forces, t_forces);
+    t0 = clock_type::now();  // spread from the n sites
+    thrust::copy(X.begin(), X.end(), Xd.begin());
+    thrust::copy(F.begin(), F.end(), Fd.begin());
+    fluid.ib.sort(ptr(Xd), n, at_eval);
+    fluid.ib.spread(at_eval, ptr(Fd), fluid.f);
+    add(r.phases.spread, per_step.spread, since(t0));
+    t0 = clock_type::now();
+    fluid.stokes.solve(fluid.f, fluid.u, fluid.p);
+    add(r.phases.solve, per_step.solve, since(t0));
+    t0 = clock_type::now();  // velocity at the same n sites: the sort is reused
+    U.resize(static_cast<std::size_t>(3 * n));
+    fluid.ib.interpolate(at_eval, fluid.u, ptr(U));
+    thrust::copy(U.begin(), U.end(), Uh.begin());
+    add(r.phases.interpolate, per_step.interpolate, since(t0));
+    t0 = clock_type::now();  // eq. (87)
+    require_finite(U, "LDSM", k);
+    for (std::size_t i = 0; i < X.size(); ++i) X[i] += spec.dt * Uh[i];
+    add(r.phases.update, per_step.update, since(t0));
+  }
+};
+
+Relaxation::Relaxation(const RelaxationSpec& spec, const EvaluationSet& eval)
+    : impl_(std::make_unique<Impl>(spec, eval)) {}
+Relaxation::~Relaxation() = default;
+
+bool Relaxation::advance() {
+  Impl& s = *impl_;
+  if (s.done) return false;
+  const auto t0 = clock_type::now();
+  try {
+    if (s.spec.method == Method::shvd)
+      s.advance_shvd();
+    else
+      s.advance_ldsm();
+    if (s.k == s.spec.steps)
+      s.done = true;
+    else
+      ++s.k;
+  } catch (const NumericalError& e) {
+    s.r.failed = true;
+    s.r.failure = std::string(to_string(s.spec.method)) + " at step " + to_text(s.k) +
+                  " (t = " + to_text(s.k * s.spec.dt) + "): " + e.what();
+    s.done = true;
+  }
+  s.r.seconds += since(t0);
+  return !s.done;
+}
+
+int Relaxation::step() const { return impl_->k; }
+
+RelaxationResult Relaxation::result() const {
+  RelaxationResult r = impl_->r;
+  r.steps = impl_->k;
+  r.median = impl_->per_step.medians();
+  return r;
+}
+
+RelaxationResult relax(const RelaxationSpec& spec, const EvaluationSet& eval) {
+  Relaxation run(spec, eval);
+  while (run.advance()) {
+  }
+  return run.result();
+}
+
+std::vector<RelaxationResult> relax_lockstep(const std::vector<std::pair<RelaxationSpec, const EvaluationSet*>>& runs) {
+  std::vector<std::unique_ptr<Relaxation>> rs;
+  for (const auto& [spec, eval] : runs) rs.push_back(std::make_unique<Relaxation>(spec, *eval));
+  for (bool any = true; any;) {
+    any = false;
+    for (auto& r : rs) any = r->advance() || any;
+  }
+  std::vector<RelaxationResult> out;
+  for (auto& r : rs) out.push_back(r->result());
+  return out;
+}
+
+}  // namespace rbfib::chapter3_dynamics
