@@ -60,22 +60,6 @@ namespace {
 Json::Array row(std::initializer_list<Json> xs) { return Json::Array(xs); }
 Json num(double x) { return std::isfinite(x) ? Json(x) : Json(); }
 
-/// Least-squares slope p of log(err) = c - p log(eta): the paper's "power law function fits" (Fig. 5).
-double power_law_order(const std::vector<double>& x, const std::vector<double>& e) {
-  const std::size_t n = x.size();
-  if (n < 2) return NAN;
-  double mx = 0, my = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    mx += std::log(x[i]) / n;
-    my += std::log(e[i]) / n;
-  }
-  double sxy = 0, sxx = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    sxy += (std::log(x[i]) - mx) * (std::log(e[i]) - my);
-    sxx += (std::log(x[i]) - mx) * (std::log(x[i]) - mx);
-  }
-  return -sxy / sxx;
-}
 
 std::string this_commit() {
   const char* c = std::getenv("RBFIB_COMMIT");
@@ -342,10 +326,10 @@ void fig5(const Setup& S, Runs& runs, Json& T, Json& V) {
   T["fig5_series"] = ts;
   for (Method m : {Method::shvd, Method::ldsm}) {
     const bool all = xs[m].size() == S.fig5_etas.size();
-    V[std::string("fig5_order_fit_") + to_string(m)] = all ? num(power_law_order(xs[m], es[m])) : Json();
+    V[std::string("fig5_order_fit_") + to_string(m)] = all ? num(st::power_law_order(xs[m], es[m])) : Json();
   }
-  st::log(S.opt, "Fig. 5: power-law orders SHVD " + to_text(power_law_order(xs[Method::shvd], es[Method::shvd])) +
-                     ", LDSM " + to_text(power_law_order(xs[Method::ldsm], es[Method::ldsm])));
+  st::log(S.opt, "Fig. 5: power-law orders SHVD " + to_text(st::power_law_order(xs[Method::shvd], es[Method::shvd])) +
+                     ", LDSM " + to_text(st::power_law_order(xs[Method::ldsm], es[Method::ldsm])));
 }
 
 /// The time step's share of the Fig. 5 error

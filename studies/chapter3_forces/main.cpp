@@ -141,22 +141,6 @@ EvalSet make_eval_set(const std::string& points, index_t n) {
   return points == "MD" ? e : with_rbf_weights(e, points);
 }
 
-/// Least-squares slope p of log(err) = c - p log(x): the paper's "power-law fit" (Figs. 2-3).
-double power_law_order(const std::vector<double>& x, const std::vector<double>& e) {
-  const std::size_t n = x.size();
-  if (n < 2) return NAN;
-  double mx = 0, my = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    mx += std::log(x[i]) / n;
-    my += std::log(e[i]) / n;
-  }
-  double sxy = 0, sxx = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    sxy += (std::log(x[i]) - mx) * (std::log(e[i]) - my);
-    sxx += (std::log(x[i]) - mx) * (std::log(x[i]) - mx);
-  }
-  return -sxy / sxx;
-}
 
 struct Energy {
   std::string name;
@@ -318,11 +302,11 @@ int main(int argc, char** argv) {
               speed["rows"].push(row({"LDSM", "n = " + to_text(n), secs, err.rel}));
           }
           const std::string key = (points == "MD" ? "" : points + "_") + tag;
-          V["ldsm_fit_order_all_" + key] = power_law_order(xs_all, es_all);
-          V["ldsm_fit_order_" + key] = power_law_order(xs_ok, es_ok);
+          V["ldsm_fit_order_all_" + key] = st::power_law_order(xs_all, es_all);
+          V["ldsm_fit_order_" + key] = st::power_law_order(xs_ok, es_ok);
           V["ldsm_fit_points_" + key] = double(xs_ok.size());
           orders["rows"].push(row({fig == "fig2_ellipsoid" ? "Fig. 2" : "Fig. 3(a)", "LDSM", en.name, points,
-                                   power_law_order(xs_ok, es_ok), power_law_order(xs_all, es_all),
+                                   st::power_law_order(xs_ok, es_ok), st::power_law_order(xs_all, es_all),
                                    double(xs_ok.size())}));
         }
         V["ldsm_rel_err_finest_" + tag] = rel_finest;
@@ -461,7 +445,7 @@ int main(int argc, char** argv) {
       }
       T["rbf_quadrature"] = t;
       V["rbf_quadrature_invertible_k1_to_4"] = all_invertible ? 1.0 : 0.0;
-      V["rbf_quadrature_fit_order_phi_r"] = power_law_order(fit_x, fit_e);
+      V["rbf_quadrature_fit_order_phi_r"] = st::power_law_order(fit_x, fit_e);
       st::log(opt, "RBF quadrature done");
     }
 

@@ -124,14 +124,4 @@ std::vector<double> unwrap(const std::vector<double>& angles, double period) {
   return out;
 }
 
-double slope(const std::vector<double>& x, const std::vector<double>& y) {
-  const std::size_t n = x.size();
-  if (n < 2 || y.size() != n) return std::nan("");
-  double mx = 0, my = 0;
-  for (std::size_t i = 0; i < n; ++i) mx += x[i] / double(n), my += y[i] / double(n);
-  double sxy = 0, sxx = 0;
-  for (std::size_t i = 0; i < n; ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
-  return sxy / sxx;
-}
-
 }  // namespace rbfib::study

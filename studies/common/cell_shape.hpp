@@ -43,7 +43,4 @@ double axis_angle(const Vec3& a, const Vec3& b);
 /// pi for an axis) so that it varies continuously.
 std::vector<double> unwrap(const std::vector<double>& angles, double period);
 
-/// Least-squares slope of y against x.
-double slope(const std::vector<double>& x, const std::vector<double>& y);
-
 }  // namespace rbfib::study

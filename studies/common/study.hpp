@@ -36,6 +36,13 @@ void write_results(const Options& opt, const Json& results);
 /// Prints "[name] message" to stdout, flushed (progress on long runs).
 void log(const Options& opt, const std::string& message);
 
+/// Least-squares slope of y against x (NaN for fewer than two points).
+double slope(const std::vector<double>& x, const std::vector<double>& y);
+
+/// Least-squares power-law order p of e ~ c x^-p, -slope(log x, log e): the paper's "power law
+/// function fits" of errors against resolution.
+double power_law_order(const std::vector<double>& x, const std::vector<double>& e);
+
 /// Median of a sample (the mean of the two middle values for an even count; NaN when empty).
 double median(std::vector<double> values);
 
