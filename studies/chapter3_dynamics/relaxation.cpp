@@ -20,6 +20,12 @@
 namespace rbfib::chapter3_dynamics {
 
 namespace {
+
+/// X += dt U over `count` values on the device (eq. 87). A free function: nvcc does not allow
+/// device lambdas inside a private nested class.
+void forward_euler(double* X, const double* U, double dt, index_t count) {
+  for_each_index(count, [=] RBFIB_HD(index_t i) { X[i] += dt * U[i]; });
+}
 using clock_type = std::chrono::steady_clock;
 double since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
 
@@ -300,7 +306,7 @@ struct Relaxation::Impl {
     require_finite(U, "SHVD", k);
     const double dt = spec.dt;
     const double* Up = ptr(U);
-    for_each_index(3 * m, [=] RBFIB_HD(index_t i) { Xm[i] += dt * Up[i]; });
+    forward_euler(Xm, Up, dt, 3 * m);
     add(r.phases.update, per_step.update, since(t0));
   }
 
