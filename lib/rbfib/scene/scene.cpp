@@ -499,8 +499,11 @@ std::vector<std::string> check_contacts(const Scene& s) {
       if (g.periodic(d)) shift[d] = g.length[d] * std::round((a[d] - b[d]) / g.length[d]);
     return shift;
   };
+  // Inside c: within its bounding sphere, and a winding number above 1/2.
   auto inside = [](const Placed& c, const std::array<double, 3>& x) {
-    return std::abs(surface::winding_number(c.X, c.n, *c.tris, x)) > 0.5;
+    double r2 = 0;
+    for (int d = 0; d < 3; ++d) r2 += (x[d] - c.center[d]) * (x[d] - c.center[d]);
+    return r2 <= c.radius * c.radius && std::abs(surface::winding_number(c.X, c.n, *c.tris, x)) > 0.5;
   };
   const double hmin = std::min({g.h(0), g.h(1), g.h(2)});
   std::vector<std::string> near;
@@ -516,13 +519,16 @@ std::vector<std::string> check_contacts(const Scene& s) {
       for (int side = 0; side < 2; ++side) {
         const Placed &P = side ? B : A, &Q = side ? A : B;
         const double sign = side ? 1 : -1;
+        index_t first = P.n;  // the first of P's sites inside Q
+#pragma omp parallel for reduction(min : first) schedule(dynamic, 64)
         for (index_t i = 0; i < P.n; ++i) {
           std::array<double, 3> x;
           for (int d = 0; d < 3; ++d) x[d] = P.X[std::size_t(d * P.n + i)] + sign * shift[d];
-          if (inside(Q, x))
-            throw InputError("cells[" + std::to_string(side ? b : a) + "]", "its data site " + std::to_string(i),
-                             "lies inside cells[" + std::to_string(side ? a : b) + "]: " + pair + " overlap");
+          if (inside(Q, x)) first = std::min(first, i);
         }
+        if (first < P.n)
+          throw InputError("cells[" + std::to_string(side ? b : a) + "]", "its data site " + std::to_string(first),
+                           "lies inside cells[" + std::to_string(side ? a : b) + "]: " + pair + " overlap");
       }
       const surface::Closest c = surface::closest_points(A.X, A.n, B.X, B.n, shift);
       if (c.distance < 2 * hmin)
