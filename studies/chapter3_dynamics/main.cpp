@@ -60,12 +60,6 @@ namespace {
 Json::Array row(std::initializer_list<Json> xs) { return Json::Array(xs); }
 Json num(double x) { return std::isfinite(x) ? Json(x) : Json(); }
 
-
-std::string this_commit() {
-  const char* c = std::getenv("RBFIB_COMMIT");
-  return c && *c ? c : "unknown";
-}
-
 /// The runs of the study: each computed once per invocation; at full scale also kept in
 /// DIR/run_<label>.txt (written atomically, with the commit that computed it) and read back from
 /// there. Layout: a header line "rbfib chapter3_dynamics run <label> <commit>", a line of the
@@ -157,7 +151,7 @@ class Runs {
     {
       std::ofstream f(tmp);
       f.precision(17);
-      f << "rbfib chapter3_dynamics run " << label << " " << this_commit() << "\n";
+      f << "rbfib chapter3_dynamics run " << label << " " << st::source_commit() << "\n";
       const PhaseTimes& p = r.phases;
       f << r.steps << " " << int(r.failed) << " " << r.seconds << " " << p.forces << " " << p.spread << " " << p.solve
         << " " << p.interpolate << " " << p.update << " " << p.force_products << " " << r.force_integral0 << " "

@@ -120,10 +120,6 @@ Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& 
 /// points. Quick scale always recomputes (minutes), so a code change is never hidden by old grids.
 std::string grid_file(const st::Options& opt, int r) { return opt.out_dir + "/grid_r" + std::to_string(r) + ".bin"; }
 
-std::string this_commit() {
-  const char* c = std::getenv("RBFIB_COMMIT");
-  return c && *c ? c : "unknown";
-}
 
 void save_grid(const st::Options& opt, const Run& run, double t_end) {
   const host_vector<double> u = run.u_centres;
@@ -263,7 +259,7 @@ int main(int argc, char** argv) {
       Run run;
       if (!full || !load_grid(opt, r, t_end, nc, eval.size(), run)) {
         run = relax(r, t_end, centres, eval, opt);
-        run.commit = this_commit();
+        run.commit = st::source_commit();
         if (full) save_grid(opt, run, t_end);
       }
       runs.push_back(std::move(run));

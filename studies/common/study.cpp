@@ -95,6 +95,11 @@ void write_results(const Options& opt, const Json& results) {
 
 void log(const Options& opt, const std::string& message) { std::cout << "[" << opt.name << "] " << message << std::endl; }
 
+std::string source_commit() {
+  const char* c = std::getenv("RBFIB_COMMIT");
+  return c && *c ? c : "unknown";
+}
+
 double slope(const std::vector<double>& x, const std::vector<double>& y) {
   const std::size_t n = x.size();
   if (n < 2 || y.size() != n) return std::nan("");

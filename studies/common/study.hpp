@@ -33,6 +33,10 @@ Json make_results(const Options& opt);
 /// Writes results to <out_dir>/results.json and says where.
 void write_results(const Options& opt, const Json& results);
 
+/// The commit the harness says built this driver (RBFIB_COMMIT), or "unknown": kept with saved
+/// full-scale runs so that a result is traced to the code that computed it.
+std::string source_commit();
+
 /// Prints "[name] message" to stdout, flushed (progress on long runs).
 void log(const Options& opt, const std::string& message);
 
