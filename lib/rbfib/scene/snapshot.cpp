@@ -57,7 +57,11 @@ std::vector<double> rows_of(const std::vector<double>& soa, std::size_t m) {
 
 }  // namespace
 
-SnapshotWriter::SnapshotWriter(const std::string& dir, const sim::ImmersedBoundary& ib) : dir_(dir) {
+SnapshotWriter::SnapshotWriter(const std::string& dir, const sim::ImmersedBoundary& ib)
+    : dir_(dir),
+      probe_({ib.fluid().operators().component_box(0), ib.fluid().operators().component_box(1),
+              ib.fluid().operators().component_box(2)},
+             ib.interaction().kernel()) {
   std::filesystem::create_directories(dir_ + "/snapshots");
   const MacGrid& g = ib.fluid().grid();
   for (int d = 0; d < 3; ++d) {
@@ -110,9 +114,6 @@ void SnapshotWriter::write(const sim::ImmersedBoundary& ib) {
       h5::write(fluid, "pressure", p.data(), grid, "dyn/cm^2");
     }
     h5::Id cells_group = h5::create_group(file, "cells");
-    ib::Interaction probe({ib.fluid().operators().component_box(0), ib.fluid().operators().component_box(1),
-                           ib.fluid().operators().component_box(2)},
-                          ib.interaction().kernel());
     for (index_t b = 0; b < ib.batches(); ++b) {
       const cells::Batch& batch = ib.batch(b);
       const cells::CellType& type = batch.type();
@@ -135,7 +136,7 @@ void SnapshotWriter::write(const sim::ImmersedBoundary& ib) {
           for (int v = 0; v < 3; ++v) tri.push_back(t[v] + c * ns);
       h5::write(g, "triangles", tri.data(), {tri.size() / 3, 3});
       dvec U;
-      probe.interpolate(dvec(soa.begin(), soa.end()), ib.fluid_state().u, U);
+      probe_.interpolate(dvec(soa.begin(), soa.end()), ib.fluid_state().u, U);
       std::vector<double> Uh(U.size());
       thrust::copy(U.begin(), U.end(), Uh.begin());
       const std::vector<double> velocity = rows_of(Uh, m);

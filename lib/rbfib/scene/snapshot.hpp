@@ -11,6 +11,7 @@
 //   /cells/<b>/force_density  M, |force density per reference area| (dyn/cm^2)
 //   /cells/<b>/mean_curvature M, H (1/cm; -1/r on a sphere of radius r)
 //   /points/<p>/points   n x 3, each tethered point set's positions (cm)
+#include "rbfib/ib/interaction.hpp"
 #include "rbfib/scene/scene.hpp"
 
 #include <string>
@@ -35,6 +36,7 @@ class SnapshotWriter {
   void write_xdmf() const;
   std::string dir_;
   std::vector<std::vector<std::array<index_t, 3>>> triangles_;  // per batch, one cell
+  ib::Interaction probe_;  // the run's kernel on its grid: interpolates at the sample sites
   struct Entry {
     std::string file;
     double t;
