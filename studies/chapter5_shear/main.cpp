@@ -62,13 +62,8 @@ struct Sample {
 
 struct Run {
   double rate = 0, mu = 0, dt = 0, t_end = 0;
-  std::vector<Sample> samples;
-  std::vector<double> X;  // final data sites (cm)
-  long steps = 0;
-  double seconds = 0;      // wall time of the steps taken in this process
-  long steps_timed = 0;
-  double min_bound = INFINITY;  // smallest eq. 5.4 bound seen (s)
-  std::string stopped;     // the NumericalError's message when the run stopped early
+  st::SceneRun run;             // steps, wall time, eq. 5.4's bound, a stop, the final data sites
+  std::vector<Sample> samples;  // run.samples, read back
   struct Outline {
     double t = 0;
     std::vector<double> z, y;  // data sites relative to the centre (cm), the view of Fig. 5.2
@@ -194,14 +189,8 @@ Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, i
         for (long i = 0; i < n; ++i) f << X[std::size_t(2 * n + i)] - sh.center[2] << ' ' << X[std::size_t(n + i)] - sh.center[1] << '\n';
       }
   };
-  const st::SceneRun run = st::run_scene(scene_text(s, rate, mu, dt, t_end), tag, every, resumable, opt, hooks);
-  for (const std::vector<double>& row : run.samples) r.samples.push_back(from_row(row));
-  r.X = run.final_positions.at(0);
-  r.steps = run.steps;
-  r.steps_timed = run.steps_timed;
-  r.seconds = run.seconds;
-  r.min_bound = run.min_bound;
-  r.stopped = run.stopped;
+  r.run = st::run_scene(scene_text(s, rate, mu, dt, t_end), tag, every, resumable, opt, hooks);
+  for (const std::vector<double>& row : r.run.samples) r.samples.push_back(from_row(row));
   for (int k = 0; k < 4; ++k) {
     std::ifstream f(outline_file(k));
     Run::Outline o;
@@ -325,11 +314,11 @@ int main(int argc, char** argv) {
                                     Json(a.inclination[i] * deg), Json(a.material[i] * deg), Json(a.taylor[i]), Json(a.force[i])});
       // Capillary number mu gdot R / E_s with the Skalak shear modulus (Sec. 2.2) and R = 3.91 um.
       const double capillary = mu * rate * cells::seed::red_cell_radius / cells::seed::red_cell_E;
-      sum["rows"].push(Json::Array{Json(rate), Json(mu / cP), Json(capillary), Json(step / us), Json(r.samples.back().t / units::ms), Json(double(r.steps)),
-                                   Json(r.steps_timed ? r.seconds / double(r.steps_timed) : NAN), Json(a.aspect), Json(a.body_rate),
+      sum["rows"].push(Json::Array{Json(rate), Json(mu / cP), Json(capillary), Json(step / us), Json(r.samples.back().t / units::ms), Json(double(r.run.steps)),
+                                   Json(r.run.seconds_per_step()), Json(a.aspect), Json(a.body_rate),
                                    Json(a.jeffery_rate), Json(a.body_rate / a.jeffery_rate), Json(a.material_rate),
                                    Json(a.inclination.back() * deg), Json(a.taylor.back()), Json(a.volume_change), Json(a.force_growth),
-                                   r.stopped.empty() ? Json() : Json(r.samples.back().t / units::ms)});
+                                   r.run.stopped.empty() ? Json() : Json(r.samples.back().t / units::ms)});
       // Outlines as in Fig. 5.2: the data sites in the y-z view, relative to the centre.
       for (const Run::Outline& o : r.outlines)
         for (std::size_t i = 0; i < o.z.size(); ++i)
@@ -345,7 +334,7 @@ int main(int argc, char** argv) {
       results["values"]["material_minus_body_" + k] = a.material_rate - a.body_rate;
       results["values"]["volume_change_" + k] = a.volume_change;
       results["values"]["force_growth_" + k] = a.force_growth;
-      results["values"]["completed_" + k] = r.stopped.empty() ? 1.0 : 0.0;
+      results["values"]["completed_" + k] = r.run.stopped.empty() ? 1.0 : 0.0;
     }
     results["tables"]["orientation"] = ts;
     results["tables"]["summary"] = sum;
@@ -366,14 +355,15 @@ int main(int argc, char** argv) {
     for (std::size_t k = 0; k < runs.size(); ++k) {
       const Run& r = runs[k];
       const double growth = analyse(r).force_growth;
-      const bool stable = r.stopped.empty() && growth < 2;
+      const bool stable = r.run.stopped.empty() && growth < 2;
       if (stable) largest = std::max(largest, r.dt);
-      scan["rows"].push(Json::Array{Json(r.dt / units::us), Json(stable ? 1.0 : 0.0), r.stopped.empty() ? Json() : Json(r.steps * r.dt / units::us),
-                                    Json(growth), Json(r.steps_timed ? r.seconds / double(r.steps_timed) : NAN), Json(r.seconds),
-                                    Json(r.min_bound / units::us)});
+      scan["rows"].push(Json::Array{Json(r.dt / units::us), Json(stable ? 1.0 : 0.0), r.run.stopped.empty() ? Json() : Json(r.run.steps * r.dt / units::us),
+                                    Json(growth), Json(r.run.seconds_per_step()), Json(r.run.seconds), Json(r.run.min_bound / units::us)});
       // Differences between successive steps dt and dt/2 (both finished): first order in dt.
-      if (k + 1 < runs.size() && r.stopped.empty() && runs[k + 1].stopped.empty())
-        diffs["rows"].push(Json::Array{Json(r.dt / units::us), Json(rms_difference_um(r.X, runs[k + 1].X)), Json(r.seconds)});
+      if (k + 1 < runs.size() && r.run.stopped.empty() && runs[k + 1].run.stopped.empty())
+        diffs["rows"].push(Json::Array{Json(r.dt / units::us),
+                                       Json(rms_difference_um(r.run.final_positions.at(0), runs[k + 1].run.final_positions.at(0))),
+                                       Json(r.run.seconds)});
     }
     results["tables"]["dt_scan"] = scan;
     results["tables"]["dt_differences"] = diffs;
