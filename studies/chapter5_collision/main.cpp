@@ -58,6 +58,7 @@
 #include "rbfib/scene/checkpoint.hpp"
 #include "rbfib/scene/scene.hpp"
 #include "rbfib/sim/ib_step.hpp"
+#include "rbfib/surface/contact.hpp"
 
 #include <algorithm>
 #include <array>
@@ -270,22 +271,16 @@ Sites sites(const sim::ImmersedBoundary& ib) {
 /// Nearest periodic image of a difference along x and z.
 double wrap(double d) { return d - kBox * std::round(d / kBox); }
 
-/// The minimum distance between the sample sites of cell 0 and cell 1 (brute force, nearest image).
+/// The minimum distance between the sample sites of cell 0 and cell 1, cell 1 taken at the periodic
+/// image (x and z) nearest cell 0's centroid (surface::closest_points, brute force).
 double min_gap(const Sites& s) {
   const index_t n = s.ns;
-  const double* x0 = &s.P[0 * n];
-  const double* x1 = &s.P[1 * n];
-  const double* y0 = &s.P[2 * n];
-  const double* y1 = &s.P[3 * n];
-  const double* z0 = &s.P[4 * n];
-  const double* z1 = &s.P[5 * n];
-  double best = std::numeric_limits<double>::infinity();
-  for (index_t i = 0; i < n; ++i)
-    for (index_t j = 0; j < n; ++j) {
-      const double dx = wrap(x1[j] - x0[i]), dy = y1[j] - y0[i], dz = wrap(z1[j] - z0[i]);
-      best = std::min(best, dx * dx + dy * dy + dz * dz);
-    }
-  return std::sqrt(best);
+  std::vector<double> cell[2];
+  for (int c = 0; c < 2; ++c)
+    for (int d = 0; d < 3; ++d) cell[c].insert(cell[c].end(), s.P.begin() + (2 * d + c) * n, s.P.begin() + (2 * d + c + 1) * n);
+  const auto& g = s.diag.centroid;
+  const std::array<double, 3> shift{wrap(g[1][0] - g[0][0]) - (g[1][0] - g[0][0]), 0, wrap(g[1][2] - g[0][2]) - (g[1][2] - g[0][2])};
+  return surface::closest_points(cell[0], n, cell[1], n, shift).distance;
 }
 
 Sample measure(const sim::ImmersedBoundary& ib, const Sites& s) {
