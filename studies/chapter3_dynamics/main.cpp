@@ -34,7 +34,7 @@
 //
 // Run:  build/studies/study_chapter3_dynamics --scale quick --out runs/chapter3_dynamics/quick
 //       (or python3 -m harness run chapter3_dynamics --scale quick)
-#include "chapter3_dynamics/relaxation.hpp"
+#include "common/chapter3_relaxation.hpp"
 #include "common/study.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/linalg/dense.hpp"
@@ -51,7 +51,7 @@
 #include <sstream>
 
 using namespace rbfib;
-using namespace rbfib::chapter3_dynamics;
+using namespace rbfib::chapter3;
 namespace st = rbfib::study;
 using st::Json;
 

@@ -1,4 +1,6 @@
 #pragma once
+// The Chapter 3 studies' shared part (chapter3_dynamics, chapter3_capillary).
+//
 // The time update of the paper's Sec. 3.3 on the periodic Stokes solver of Sec. 3.2, for one
 // elastic shell relaxing in [-L, L]^3 (the dynamic test of Sec. 4.2), with either force method:
 //
@@ -40,7 +42,7 @@
 #include <string>
 #include <vector>
 
-namespace rbfib::chapter3_dynamics {
+namespace rbfib::chapter3 {
 
 enum class Method { shvd, ldsm };
 const char* to_string(Method m);
@@ -143,4 +145,4 @@ RelaxationResult relax(const RelaxationSpec& spec, const EvaluationSet& eval);
 /// shared machine falls on all of them alike (the timing runs of Table 1).
 std::vector<RelaxationResult> relax_lockstep(const std::vector<std::pair<RelaxationSpec, const EvaluationSet*>>& runs);
 
-}  // namespace rbfib::chapter3_dynamics
+}  // namespace rbfib::chapter3

@@ -1,4 +1,4 @@
-#include "chapter3_dynamics/relaxation.hpp"
+#include "common/chapter3_relaxation.hpp"
 
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/cells/shapes.hpp"
@@ -17,7 +17,7 @@
 #include <map>
 #include <memory>
 
-namespace rbfib::chapter3_dynamics {
+namespace rbfib::chapter3 {
 
 namespace {
 
@@ -407,4 +407,4 @@ std::vector<RelaxationResult> relax_lockstep(const std::vector<std::pair<Relaxat
   return out;
 }
 
-}  // namespace rbfib::chapter3_dynamics
+}  // namespace rbfib::chapter3
