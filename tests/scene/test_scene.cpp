@@ -231,6 +231,36 @@ TEST(Scene, AWallTurnsAsInSection521) {
   EXPECT_EQ(field_of(replaced(turning, "speed: 16 mm/s", "pace: 16 mm/s")), "domain.walls.y.upper.speed");
 }
 
+TEST(Scene, TheEndotheliumOfEquation55LiesOnTheToroidalSpiral) {
+  // Sec. 5.2: 16,000 points on the toroidal spiral of Appendix B, flat (y = 1 um) or bumpy
+  // (y = 0.75 um + 1 um cos^2(theta - phi) sin^2(phi / 2)), x = 16 um theta / 2 pi, z = 16 um phi / 2 pi.
+  const std::string bumpy = replaced(channel_scene, "plane: {y: 1 um, points: [32, 30]}", "spiral: {y: 0.75 um, bump: 1 um, points: 16000}");
+  const Scene s = parse_scene(bumpy, "bumpy");
+  ASSERT_EQ(s.point_sets.size(), 1u);
+  const host_vector<double> X = s.point_sets[0].X;
+  const std::size_t N = 16000;
+  ASSERT_EQ(X.size(), 3 * N);
+  const double pi = 3.14159265358979323846, um = 1e-4;
+  double y_min = 1, y_max = 0, y_mean = 0;
+  for (std::size_t i = 0; i < N; ++i) {
+    const double phi = 2 * pi * double(i) / double(N);
+    const double theta = std::fmod(127 * phi, 2 * pi);  // ceil(sqrt 16000) = 127 turns
+    EXPECT_NEAR(X[i], 16 * um * theta / (2 * pi), 1e-12) << i;
+    EXPECT_NEAR(X[2 * N + i], 16 * um * phi / (2 * pi), 1e-12) << i;
+    const double y = X[N + i];
+    EXPECT_NEAR(y, 0.75 * um + um * std::pow(std::cos(theta - phi) * std::sin(phi / 2), 2), 1e-12) << i;
+    y_min = std::min(y_min, y), y_max = std::max(y_max, y), y_mean += y / double(N);
+  }
+  EXPECT_NEAR(y_min, 0.75 * um, 1e-9);
+  EXPECT_NEAR(y_max, 1.75 * um, 1e-3 * um);  // the bumps' prominence, 1 um
+  // The mean height is the flat wall's 1 um (the mean of cos^2 sin^2 is 1/4): both shapes leave the
+  // same volume above them, as Sec. 5.2 keeps the hematocrit.
+  EXPECT_NEAR(y_mean, 1.0 * um, 1e-3 * um);
+  EXPECT_EQ(field_of(replaced(bumpy, "bump: 1 um", "bump: 20 um")), "tethered_points[0].spiral.bump");
+  EXPECT_EQ(field_of(replaced(bumpy, "points: 16000", "points: 0")), "tethered_points[0].spiral.points");
+  EXPECT_EQ(field_of(replaced(bumpy, "spiral: {", "plane: {y: 1 um, points: [4, 4]}\n    spiral: {")), "tethered_points[0]");
+}
+
 void expect_same(const dvec& a, const dvec& b, const std::string& what) {
   ASSERT_EQ(a.size(), b.size()) << what;
   const host_vector<double> x = a, y = b;

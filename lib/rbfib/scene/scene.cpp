@@ -6,6 +6,7 @@
 #include "rbfib/grid/box.hpp"
 #include "rbfib/ib/kernels.hpp"
 #include "rbfib/surface/contact.hpp"
+#include "rbfib/surface/point_sets.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -349,34 +350,67 @@ CellEntry read_cell(const Fields& f, const Scene& s) {
   return c;
 }
 
+/// The surface a tethered point set lies on: normal axis, tangential axes p < q, and the points.
+/// `plane: {y: 1 um, points: [n1, n2]}`: a cell-centred lattice, (i + 1/2) L / n on each
+/// tangential axis. `spiral: {y: 0.75 um, bump: 1 um, points: 16000}`: the toroidal spiral of
+/// Appendix B, (theta_i, phi_i) = (mod(ceil(sqrt N) phi_i, 2 pi), 2 pi (i - 1)/N), on the surface
+/// of eq. 5.5, X = (L_p theta / 2 pi, y(theta, phi), L_q phi / 2 pi) with
+/// y = y0 + bump cos^2(theta - phi) sin^2(phi / 2) (bump 0, the default: the flat wall y = y0).
+std::vector<double> read_point_surface(const Fields& f, const Scene& s) {
+  const bool spiral = f.has("spiral");
+  if (spiral == f.has("plane"))
+    throw InputError(f.path(), spiral ? "both plane and spiral" : "(neither)", "give a plane or a spiral");
+  const Fields g = f.map(spiral ? "spiral" : "plane");
+  int normal = -1;
+  for (int d = 0; d < 3; ++d)
+    if (g.has(axis_name[d])) {
+      if (normal >= 0) throw InputError(g.at(axis_name[d]), "", "the surface's position is given by one coordinate (x, y or z)");
+      normal = d;
+    }
+  if (normal < 0) throw InputError(g.at("y"), "(missing)", "give the surface's position along one axis, e.g. y: 1 um");
+  const double at = g.quantity(axis_name[normal], "um");
+  if (!(at >= 0 && at <= s.grid.length[normal]))
+    throw InputError(g.at(axis_name[normal]), to_text(at / units::um) + " um", "lies outside the box");
+  const int a = normal == 0 ? 1 : 0, b = normal == 2 ? 1 : 2;  // the tangential axes, a < b
+  const double La = s.grid.length[a], Lb = s.grid.length[b];
+  std::vector<double> X;
+  if (!spiral) {
+    const std::vector<long> counts = g.integers("points", 2, 1, 4096);
+    const int n[2] = {int(counts[0]), int(counts[1])};
+    g.finish();
+    const index_t total = index_t(n[0]) * n[1];
+    X.resize(static_cast<std::size_t>(3 * total));
+    for (int i = 0; i < n[0]; ++i)
+      for (int j = 0; j < n[1]; ++j) {
+        const index_t q = index_t(i) * n[1] + j;
+        X[a * total + q] = (i + 0.5) * La / n[0];
+        X[b * total + q] = (j + 0.5) * Lb / n[1];
+        X[normal * total + q] = at;
+      }
+    return X;
+  }
+  const index_t N = index_t(g.integer("points", 1, 4096L * 4096L));
+  const double bump = g.has("bump") ? g.quantity("bump", "um") : 0.0;
+  if (!(bump >= 0 && at + bump <= s.grid.length[normal]))
+    throw InputError(g.at("bump"), to_text(bump / units::um) + " um", "must be >= 0 and keep the surface inside the box");
+  g.finish();
+  constexpr double pi = 3.14159265358979323846;
+  const surface::SphereSites t = surface::toroidal_spiral(N);  // lambda: theta, theta: phi
+  X.resize(static_cast<std::size_t>(3 * N));
+  for (index_t i = 0; i < N; ++i) {
+    const double theta = t.lambda[i], phi = t.theta[i];
+    const double c = std::cos(theta - phi), sh = std::sin(phi / 2);
+    X[a * N + i] = La * theta / (2 * pi);
+    X[b * N + i] = Lb * phi / (2 * pi);
+    X[normal * N + i] = at + bump * c * c * sh * sh;
+  }
+  return X;
+}
+
 sim::TetheredPoints read_points(const Fields& f, const Scene& s) {
   sim::TetheredPoints p;
   p.name = f.string("name");
-  const Fields plane = f.map("plane");
-  int normal = -1;
-  for (int d = 0; d < 3; ++d)
-    if (plane.has(axis_name[d])) {
-      if (normal >= 0) throw InputError(plane.at(axis_name[d]), "", "a plane is given by one coordinate (x, y or z)");
-      normal = d;
-    }
-  if (normal < 0) throw InputError(plane.at("y"), "(missing)", "give the plane's position along one axis, e.g. y: 1 um");
-  const double at = plane.quantity(axis_name[normal], "um");
-  if (!(at >= 0 && at <= s.grid.length[normal]))
-    throw InputError(plane.at(axis_name[normal]), to_text(at / units::um) + " um", "lies outside the box");
-  const std::vector<long> counts = plane.integers("points", 2, 1, 4096);
-  const int n[2] = {int(counts[0]), int(counts[1])};
-  plane.finish();
-  // A lattice over the two other axes, cell-centred: points (i + 1/2) L / n.
-  const int a = (normal + 1) % 3, b = (normal + 2) % 3;
-  const index_t total = index_t(n[0]) * n[1];
-  std::vector<double> X(static_cast<std::size_t>(3 * total));
-  for (int i = 0; i < n[0]; ++i)
-    for (int j = 0; j < n[1]; ++j) {
-      const index_t q = index_t(i) * n[1] + j;
-      X[a * total + q] = (i + 0.5) * s.grid.length[a] / n[0];
-      X[b * total + q] = (j + 0.5) * s.grid.length[b] / n[1];
-      X[normal * total + q] = at;
-    }
+  const std::vector<double> X = read_point_surface(f, s);
   p.X = dvec(X.begin(), X.end());
   p.anchors = p.X;
   p.k = f.nonnegative("k", "dyn/cm");
