@@ -256,6 +256,17 @@ TEST(Scene, TheEndotheliumOfEquation55LiesOnTheToroidalSpiral) {
   // The mean height is the flat wall's 1 um (the mean of cos^2 sin^2 is 1/4): both shapes leave the
   // same volume above them, as Sec. 5.2 keeps the hematocrit.
   EXPECT_NEAR(y_mean, 1.0 * um, 1e-3 * um);
+  // Its normal: (-dy/dx, 1, -dy/dz) normalized, against central differences of the height.
+  const EndotheliumSurface e{0.75 * um, um, 16 * um, 16 * um};
+  for (const auto& [x, z] : std::vector<std::pair<double, double>>{{3 * um, 5 * um}, {11 * um, 2 * um}, {7.5 * um, 13 * um}}) {
+    const double d = 1e-4 * um;
+    const double gx = (e.height(x + d, z) - e.height(x - d, z)) / (2 * d), gz = (e.height(x, z + d) - e.height(x, z - d)) / (2 * d);
+    const double nn = std::sqrt(1 + gx * gx + gz * gz);
+    const auto n = e.normal(x, z);
+    EXPECT_NEAR(n[0], -gx / nn, 1e-7);
+    EXPECT_NEAR(n[1], 1 / nn, 1e-7);
+    EXPECT_NEAR(n[2], -gz / nn, 1e-7);
+  }
   EXPECT_EQ(field_of(replaced(bumpy, "bump: 1 um", "bump: 20 um")), "tethered_points[0].spiral.bump");
   EXPECT_EQ(field_of(replaced(bumpy, "points: 16000", "points: 0")), "tethered_points[0].spiral.points");
   EXPECT_EQ(field_of(replaced(bumpy, "spiral: {", "plane: {y: 1 um, points: [4, 4]}\n    spiral: {")), "tethered_points[0]");

@@ -395,17 +395,39 @@ std::vector<double> read_point_surface(const Fields& f, const Scene& s) {
     throw InputError(g.at("bump"), to_text(bump / units::um) + " um", "must be >= 0 and keep the surface inside the box");
   g.finish();
   constexpr double pi = 3.14159265358979323846;
+  const EndotheliumSurface surface{at, bump, La, Lb};
   const surface::SphereSites t = surface::toroidal_spiral(N);  // lambda: theta, theta: phi
   X.resize(static_cast<std::size_t>(3 * N));
   for (index_t i = 0; i < N; ++i) {
-    const double theta = t.lambda[i], phi = t.theta[i];
-    const double c = std::cos(theta - phi), sh = std::sin(phi / 2);
-    X[a * N + i] = La * theta / (2 * pi);
-    X[b * N + i] = Lb * phi / (2 * pi);
-    X[normal * N + i] = at + bump * c * c * sh * sh;
+    X[a * N + i] = La * t.lambda[i] / (2 * pi);
+    X[b * N + i] = Lb * t.theta[i] / (2 * pi);
+    X[normal * N + i] = surface.height(X[a * N + i], X[b * N + i]);
   }
   return X;
 }
+
+}  // namespace
+
+double EndotheliumSurface::height(double s, double t) const {
+  constexpr double pi = 3.14159265358979323846;
+  const double theta = 2 * pi * s / Ls, phi = 2 * pi * t / Lt;
+  const double c = std::cos(theta - phi), sh = std::sin(phi / 2);
+  return y0 + bump * c * c * sh * sh;
+}
+
+std::array<double, 3> EndotheliumSurface::normal(double s, double t) const {
+  constexpr double pi = 3.14159265358979323846;
+  const double theta = 2 * pi * s / Ls, phi = 2 * pi * t / Lt;
+  const double c = std::cos(theta - phi), sh = std::sin(phi / 2), s2 = std::sin(2 * (theta - phi));
+  // d height / d theta = -bump sin(2 (theta - phi)) sin^2(phi/2);
+  // d height / d phi = bump (sin(2 (theta - phi)) sin^2(phi/2) + cos^2(theta - phi) sin(phi) / 2).
+  const double ds = -bump * s2 * sh * sh * 2 * pi / Ls;
+  const double dt = bump * (s2 * sh * sh + c * c * std::sin(phi) / 2) * 2 * pi / Lt;
+  const double norm = std::sqrt(1 + ds * ds + dt * dt);
+  return {-ds / norm, 1 / norm, -dt / norm};
+}
+
+namespace {
 
 sim::TetheredPoints read_points(const Fields& f, const Scene& s) {
   sim::TetheredPoints p;
@@ -599,8 +621,8 @@ std::vector<std::string> check_contacts(const Scene& s) {
   return near;
 }
 
-sim::ImmersedBoundary build(const Scene& s) {
-  check_contacts(s);
+sim::ImmersedBoundary build(const Scene& s, bool check_placements) {
+  if (check_placements) check_contacts(s);
   const auto& walls = s.walls;
   sim::ImmersedBoundary ib(s.grid, s.fluid, s.fluid_options, boundary_velocity(s), s.ib);
   if (s.initial_shear) {

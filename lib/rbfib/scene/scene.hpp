@@ -41,6 +41,16 @@ struct WallMotion {
   std::array<double, 3> at(double t) const;
 };
 
+/// The endothelium's surface of dissertation eq. 5.5 over a wall's tangential axes (s, t) (for a
+/// wall across y: s = x, t = z), lengths Ls and Lt: height = y0 + bump cos^2(theta - phi) sin^2(phi/2)
+/// with theta = 2 pi s / Ls, phi = 2 pi t / Lt (bump = 0: the flat wall y = y0). cm.
+struct EndotheliumSurface {
+  double y0 = 0, bump = 0, Ls = 0, Lt = 0;
+  double height(double s, double t) const;
+  /// The unit normal pointing away from the wall it covers (into the flow), as (n_s, n_normal, n_t).
+  std::array<double, 3> normal(double s, double t) const;
+};
+
 struct Scene {
   std::string name;    ///< from the file name or the "name" key
   std::string source;  ///< the YAML text as read (kept with the output)
@@ -77,10 +87,12 @@ BoundaryVelocity boundary_velocity(const Scene& scene);
 /// cells: the kernels of closer sites overlap, and the forces of the two cells mix).
 std::vector<std::string> check_contacts(const Scene& scene);
 
-/// Builds the coupled step of a scene (after check_contacts): the fluid solver with its walls, the flow at t = 0, one
-/// batch per cell type with its cells, the point sets. Builds each type's operators (seconds to
-/// minutes for large types).
-sim::ImmersedBoundary build(const Scene& scene);
+/// Builds the coupled step of a scene (after check_contacts): the fluid solver with its walls, the
+/// flow at t = 0, one batch per cell type with its cells, the point sets. Builds each type's
+/// operators (seconds to minutes for large types). check_placements = false skips check_contacts,
+/// for a caller that replaces the placed state at once by one it has checked itself (a run
+/// continued from another run's state with cells added, as the platelets of Sec. 5.2.1).
+sim::ImmersedBoundary build(const Scene& scene, bool check_placements = true);
 
 /// A multi-line summary with units: the box, grid, flow, step, kernel, types, cells, point sets.
 std::string describe(const Scene& scene);
