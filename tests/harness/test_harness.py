@@ -62,6 +62,12 @@ class Checks(unittest.TestCase):
         full = checks.evaluate({"checks": [c]}, dict(RESULTS, scale="full"))[0]
         self.assertEqual(full["status"], "FAIL")
 
+    def test_check_waiting_for_an_unfinished_run(self):
+        c = {"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 2.9, "when": "completed"}
+        self.assertEqual(run_checks(c)[0]["status"], "NOT RUN")
+        done = dict(RESULTS, values=dict(RESULTS["values"], completed=1.0))
+        self.assertEqual(checks.evaluate({"checks": [c]}, done)[0]["status"], "FAIL")
+
     def test_bound_and_missing_data_fail(self):
         self.assertTrue(run_checks({"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 3.0})[0]["passed"])
         self.assertFalse(run_checks({"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 2.9})[0]["passed"])
