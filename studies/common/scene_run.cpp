@@ -45,11 +45,13 @@ std::vector<std::vector<double>> load_rows(const std::string& path, double t_max
 }  // namespace
 
 SceneRun run_scene(const std::string& text, const std::string& tag, int every, bool resumable, const Options& opt,
-                   const SceneRunHooks& hooks) {
+                   const SceneRunHooks& hooks, double max_seconds) {
   using clock = std::chrono::steady_clock;
   std::ofstream(opt.out_dir + "/scene_" + tag + ".yaml") << text;
   const scene::Scene scene = scene::parse_scene(text, "scene_" + tag + ".yaml");
-  sim::ImmersedBoundary ib = scene::build(scene);
+  // A run whose starting state the prepare hook sets: the placements in the text are not where the
+  // cells start, and the hook's caller checks the state it sets.
+  sim::ImmersedBoundary ib = scene::build(scene, !hooks.prepare);
   if (hooks.at_start) hooks.at_start(ib);
   SceneRun r;
   const std::string ckpt = opt.out_dir + "/checkpoint_" + tag + ".h5", samples = opt.out_dir + "/samples_" + tag + ".txt",
@@ -68,6 +70,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
     }
   }
   if (r.samples.empty()) {
+    if (hooks.prepare) hooks.prepare(ib);
     r.samples.push_back(hooks.sample(ib, nullptr));
     if (hooks.after_step) hooks.after_step(ib);
   }
@@ -75,7 +78,8 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   const auto t0 = clock::now();
   auto last_log = t0, last_save = t0;
   try {
-    while (r.stopped.empty() && ib.step_count() < total) {
+    while (r.stopped.empty() && ib.step_count() < total &&
+           !(resumable && std::chrono::duration<double>(clock::now() - t0).count() > max_seconds)) {
       const sim::IbStepReport rep = ib.step();
       ++r.steps_timed;
       r.min_bound = std::min(r.min_bound, rep.dt_bound);
@@ -101,12 +105,14 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   }
   r.seconds = std::chrono::duration<double>(clock::now() - t0).count();
   r.steps = ib.step_count();
+  r.finished = !r.stopped.empty() || r.steps >= total;
   if (resumable) {  // the end, or the last good state before a failure
     scene::write_checkpoint(ckpt, text, ib);
     save_rows(samples, r.samples);
     if (!r.stopped.empty()) std::ofstream(stopped) << r.stopped << "\n";
   }
   for (index_t b = 0; b < ib.batches(); ++b) r.final_positions.push_back(ib.batch(b).positions_host());
+  for (index_t p = 0; p < ib.point_sets(); ++p) r.final_points.push_back(ib.points(p).X);
   return r;
 }
 

@@ -20,6 +20,10 @@ namespace rbfib::study {
 struct SceneRunHooks {
   /// Called once after the scene is built, at t = 0 (before a checkpoint is restored).
   std::function<void(const sim::ImmersedBoundary&)> at_start;
+  /// Called once for a fresh run (not one continued from its checkpoint), before the first
+  /// sample: may set the starting state, e.g. another run's state with cells added or removed.
+  /// With it, the scene is built without scene::check_contacts on its placements.
+  std::function<void(sim::ImmersedBoundary&)> prepare;
   /// One row of numbers describing the state; `report` is null for the row at the start.
   std::function<std::vector<double>(const sim::ImmersedBoundary&, const sim::IbStepReport* report)> sample;
   /// Called after every step (and once at the start of a fresh run).
@@ -29,17 +33,20 @@ struct SceneRunHooks {
 struct SceneRun {
   std::vector<std::vector<double>> samples;  ///< rows from hooks.sample, the first at t = 0
   std::vector<std::vector<double>> final_positions;  ///< each batch's data sites at the end (cm)
+  std::vector<dvec> final_points;                    ///< each tethered point set's positions at the end (cm)
   long steps = 0;        ///< steps from t = 0 to the end (or to the failure)
   long steps_timed = 0;  ///< steps taken by this process
   double seconds = 0;    ///< their wall time (s)
   double min_bound = INFINITY;  ///< smallest eq. 5.4 bound over those steps (s)
   std::string stopped;   ///< the NumericalError's message when the run ended early
+  bool finished = false; ///< reached the scene's end (or stopped); false: the wall-time budget ran out
   double seconds_per_step() const { return steps_timed > 0 ? seconds / double(steps_timed) : NAN; }
 };
 
 /// Runs the scene `text` (its end time is the run's), sampling every `every` steps and at the end;
-/// writes DIR/scene_<tag>.yaml.
+/// writes DIR/scene_<tag>.yaml. A resumable run given `max_seconds` of wall time saves its
+/// checkpoint when they are spent and returns unfinished (continued at the next start).
 SceneRun run_scene(const std::string& text, const std::string& tag, int every, bool resumable, const Options& opt,
-                   const SceneRunHooks& hooks);
+                   const SceneRunHooks& hooks, double max_seconds = INFINITY);
 
 }  // namespace rbfib::study
