@@ -43,6 +43,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <sstream>
 
 using namespace rbfib;
 using namespace rbfib::chapter5_whole_blood;
@@ -76,7 +77,14 @@ struct Setup {
   int every;  // steps between samples
 };
 
-std::string um_text(double x) { return to_text(x / um) + " um"; }
+/// A number for a scene file: ten significant digits (0.4, not 0.40000000000000002).
+std::string num(double x) {
+  std::ostringstream o;
+  o.precision(10);
+  o << x;
+  return o.str();
+}
+std::string um_text(double x) { return num(x / um) + " um"; }
 
 /// The scene of the init run or of a run from a starting state (docs/scenes.md).
 std::string scene_text(const Setup& s, const Wall& w, const std::vector<cells::Placement>& red, const std::vector<cells::Placement>& platelets,
@@ -93,10 +101,10 @@ std::string scene_text(const Setup& s, const Wall& w, const std::vector<cells::P
          "name: whole_blood_" + w.name + "\n"
          "domain:\n  size: [16 um, 12 um, 16 um]\n  periodic: [x, z]\n"
          "  walls:\n    y: {lower: [0 mm/s, 0 mm/s, 0 mm/s], upper: {speed: 16 mm/s, turn: {from: 0 deg, to: 45 deg, over: " +
-         to_text(s.turn / ms) + " ms}}}\n"
+         num(s.turn / ms) + " ms}}}\n"
          "fluid: {density: 1 g/cm^3, viscosity: 1 cP}\n"
          "grid: {h: " + um_text(s.h) + "}\n"
-         "time: {integrator: backward_forward_euler, dt: " + to_text(s.dt / units::ns) + " ns, end: " + to_text(t_end / us) + " us}\n"
+         "time: {integrator: backward_forward_euler, dt: " + num(s.dt / units::ns) + " ns, end: " + num(t_end / us) + " us}\n"
          "ib: {kernel: bspline3}\n"
          "cell_types:\n" + types + "cells:\n" + cells_text +
          "tethered_points:\n  - {name: endothelium, spiral: " + spiral + ", k: 2.5 dyn/cm, eta: 2.5e-7 dyn s/cm}\n";
@@ -302,8 +310,7 @@ int main(int argc, char** argv) {
     P["seed"] = double(seed);
     P["kernel_integrator_coupling"] = "B3 kernel, backward-forward Euler, the seed's coupling (a)-(g)";
 
-    const cells::CellTypeSpec rbc_spec = cells::red_cell_spec(s.rbc_nd, s.rbc_ns), plt_spec = cells::platelet_spec(s.plt_n, s.plt_n);
-    const ReferenceSites rbc = reference_sites(rbc_spec), plt = reference_sites(plt_spec);
+    const ReferenceSites rbc = reference_sites(cells::red_cell_spec(s.rbc_nd, s.rbc_ns)), plt = reference_sites(cells::platelet_spec(s.plt_n, s.plt_n));
 
     Json profiles = st::table({"run", "y_um", "u_mm_s"}, {"", "um", "mm/s"});
     for (double y : {0.0, 12.0}) profiles["rows"].push(Json::Array{Json("Couette between the walls"), Json(y), Json(wall_speed * 10 * y / 12)});
@@ -319,7 +326,7 @@ int main(int argc, char** argv) {
     Json cost = st::table({"run", "h_um", "dt_ns", "steps_done", "steps_needed", "seconds_per_step", "hours_to_solution"},
                           {"", "um", "ns", "", "", "s", "h"});
     Json& V = results["values"];
-    const double v_ref = cells::CellType(rbc_spec).reference_volume() / std::pow(um, 3);  // the red cell's (um^3)
+    double v_ref = NAN;  // the red cell's reference volume (um^3), from the init run's cell type
     bool all_done = true;
     std::map<std::string, double> shear;  // per run: the platelet layer's shear rate
     double worst_volume = 0, worst_couette = 0, closest_red = INFINITY, closest_platelet_red = INFINITY, min_platelet_endothelium = INFINITY;
@@ -346,6 +353,29 @@ int main(int argc, char** argv) {
 
       // ---- init: endothelium and red cells, the wall turning ------------------------------------
       const std::string init_text = scene_text(s, w, layout.red_cells, {}, starts.back(), "init");
+      {
+        // An example for `rbfib run` (scenes/whole_blood_*.yaml): the same layout with platelets placed
+        // by the same algorithm against the red cells as laid out, the flow from rest, 40 us.
+        std::mt19937_64 erng(seed + 50 + wi);
+        std::vector<double> red;
+        for (const cells::Placement& p : layout.red_cells) {
+          const std::vector<double> X = cells::placed(rbc.X, rbc.n, p, "red cell");
+          red.insert(red.end(), X.begin(), X.end());
+        }
+        // place_platelets reads the red cells in a batch's layout (n x 3N): regroup the cells' n x 3 blocks.
+        std::vector<double> batch(red.size());
+        for (std::size_t c = 0; c < 8; ++c)
+          for (int d = 0; d < 3; ++d)
+            std::copy_n(red.begin() + long((3 * c + std::size_t(d)) * std::size_t(rbc.n)), rbc.n,
+                        batch.begin() + long((std::size_t(d) * 8 + c) * std::size_t(rbc.n)));
+        PlateletSpec ps;
+        ps.min_separation = 3.1 * um + 4 * s.h;
+        const std::vector<double> E = host(scene::parse_scene(init_text, "init").point_sets.at(0).X);
+        const PlateletPlacement ex = place_platelets(plt, box, E, batch, rbc.n, 2, ps, erng);
+        std::ofstream(opt.out_dir + "/example_" + w.name + ".yaml")
+            << scene_text(s, w, layout.red_cells, ex.platelets, 40 * us, "an example: the layout of the procedure with platelets placed against it")
+            << "output: {diagnostics_every: 10, snapshot_every: 10 us}\n";
+      }
       st::SceneRunHooks ih;
       ih.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport* r) {
         const cells::Batch& R = ib.batch(0);
@@ -358,7 +388,9 @@ int main(int argc, char** argv) {
         for (std::size_t k = 0; k < starts.size(); ++k)
           if (ib.step_count() == start_steps[k]) scene::write_checkpoint(start_file + to_text(k) + ".h5", init_text, ib);
       };
-      const st::SceneRun init = st::run_scene(init_text, "init_" + w.name, s.every, full, opt, ih, remaining());
+      ih.at_start = [&](const sim::ImmersedBoundary& ib) { v_ref = ib.batch(0).type().reference_volume() / std::pow(um, 3); };
+      // A sitting's budget is shared by the walls' init runs still to come.
+      const st::SceneRun init = st::run_scene(init_text, "init_" + w.name, s.every, full, opt, ih, remaining() / double(s.walls.size() - wi));
       const long init_needed = std::lround(starts.back() / s.dt);
       cost["rows"].push(Json::Array{Json("init " + w.name), Json(s.h / um), Json(s.dt / units::ns), Json(double(init.steps)), Json(double(init_needed)),
                                     Json(init.seconds_per_step()), Json(double(init_needed - init.steps) * init.seconds_per_step() / 3600)});

@@ -151,5 +151,35 @@ class Output(unittest.TestCase):
             np.testing.assert_array_equal(np.array(blocks["wall"]["xyz"]), f["points/0/points"][()])
 
 
+class WholeBloodExample(unittest.TestCase):
+    def test_vtk_opens_the_whole_blood_example(self):
+        # The shipped example of Sec. 5.2, run for 2 us: every cell type and the endothelium are blocks.
+        self.assertTrue(os.path.exists(VTK_PYTHON), "VTK's Python is missing: run `make deps` (it makes .venv-vtk)")
+        with tempfile.TemporaryDirectory() as d:
+            scene = os.path.join(d, "scene.yaml")
+            with open(os.path.join(ROOT, "scenes", "whole_blood_bumpy.yaml")) as f:
+                text = f.read().replace("snapshot_every: 10 us", "snapshot_every: 1 us")
+            with open(scene, "w") as f:
+                f.write(text)
+            r = subprocess.run([RBFIB, "run", scene, "--out", os.path.join(d, "out"), "--until", "2 us"], capture_output=True,
+                               text=True, timeout=600)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            r = subprocess.run([VTK_PYTHON, "-c", READ_WITH_VTK, os.path.join(d, "out", "run.xmf")], capture_output=True, text=True,
+                               timeout=300)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            got = json.loads(r.stdout.strip().split("\n")[-1])
+            np.testing.assert_allclose(got["times"], [0.0, 1e-6, 2e-6])
+            blocks = got["blocks"]
+            self.assertEqual(sorted(blocks), ["endothelium", "fluid", "platelet", "red cell"])
+            self.assertEqual(blocks["red cell"]["points"], 8 * 1600)
+            self.assertEqual(blocks["platelet"]["points"], 2 * 400)
+            self.assertEqual(blocks["endothelium"]["points"], 4096)
+            self.assertEqual(blocks["fluid"]["cells"], 40 * 30 * 40)
+            # The bumpy endothelium of eq. 5.5 between 0.75 and 1.75 um.
+            y = np.array(blocks["endothelium"]["xyz"])[:, 1]
+            self.assertGreater(y.min(), 0.74e-4)
+            self.assertLess(y.max(), 1.76e-4)
+
+
 if __name__ == "__main__":
     unittest.main()
