@@ -6,6 +6,7 @@
 #include "rbfib/scene/scene.hpp"
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -35,8 +36,13 @@ std::vector<std::vector<double>> load_rows(const std::string& path, double t_max
   while (std::getline(f, line)) {
     std::istringstream in(line);
     std::vector<double> r;
-    for (double x; in >> x;) r.push_back(x);
-    if (r.empty() || !in.eof()) throw InputError("samples file " + path, "'" + line + "'", "a malformed line");
+    bool ok = true;
+    for (std::string word; in >> word;) {  // strtod, not >>, so that nan and inf read back
+      char* end = nullptr;
+      r.push_back(std::strtod(word.c_str(), &end));
+      ok = ok && end == word.c_str() + word.size();
+    }
+    if (r.empty() || !ok) throw InputError("samples file " + path, "'" + line + "'", "a malformed line");
     if (r[0] <= t_max * (1 + 1e-12)) rows.push_back(std::move(r));
   }
   return rows;
