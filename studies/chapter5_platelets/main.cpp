@@ -130,7 +130,8 @@ int main(int argc, char** argv) {
 
     st::SceneRunHooks hooks;
     hooks.sample = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib); };
-    const st::SceneRun run = st::run_scene(scene_text(s), "platelets", every, full, opt, hooks);
+    const st::Sitting sitting;  // full scale: a sitting's wall time
+    const st::SceneRun run = st::run_scene(scene_text(s), "platelets", every, full, opt, hooks, sitting.remaining());
 
     // ---- Analysis ---------------------------------------------------------------------------
     std::vector<double> t;
@@ -195,14 +196,16 @@ int main(int argc, char** argv) {
     }
     results["values"]["endothelium_displacement_um"] = endothelium_max / units::um;
     results["values"]["completed"] = run.stopped.empty() ? 1.0 : 0.0;
+    results["values"]["finished"] = run.finished ? 1.0 : 0.0;  // reached its end (or was stopped)
     results["tables"]["platelets"] = ts;
     results["tables"]["summary"] = sum;
     // The cost: time per step and the time to the seed's 100 ms at the seed's step.
-    Json cost = st::table({"h_um", "dt_us", "steps", "seconds", "seconds_per_step", "steps_to_100ms", "hours_to_100ms"},
-                          {"um", "us", "", "s", "s", "", "h"});
+    Json cost = st::table({"h_um", "dt_us", "steps", "seconds", "seconds_per_step", "steps_to_100ms", "hours_to_100ms", "hours_to_go"},
+                          {"um", "us", "", "s", "s", "", "h", "h"});
     const double steps_100 = std::round(100 * ms / s.dt);
     cost["rows"].push(Json::Array{Json(16.0 / s.cells_x), Json(s.dt / us), Json(double(run.steps)), Json(run.seconds), Json(run.seconds_per_step()),
-                                  Json(steps_100), Json(steps_100 * run.seconds_per_step() / 3600)});
+                                  Json(steps_100), Json(steps_100 * run.seconds_per_step() / 3600),
+                                  Json(double(total - run.steps) * run.seconds_per_step() / 3600)});
     results["tables"]["cost"] = cost;
     st::write_results(opt, results);
     return 0;

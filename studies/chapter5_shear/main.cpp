@@ -143,7 +143,7 @@ Sample from_row(const std::vector<double>& r) {
 
 /// Runs one scene to t_end (or until a NumericalError stops it), sampling every `every` steps.
 Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, int every, const st::Options& opt, bool resumable,
-              const std::string& prefix = "") {
+              const std::string& prefix = "", double max_seconds = INFINITY) {
   char mu_text[32];
   std::snprintf(mu_text, sizeof mu_text, "%g", mu / units::cP);
   const std::string tag = prefix + "rate" + to_text(std::lround(rate)) + "_mu" + mu_text + "cP_dt" + to_text(std::lround(dt / units::ns)) + "ns";
@@ -189,7 +189,7 @@ Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, i
         for (long i = 0; i < n; ++i) f << X[std::size_t(2 * n + i)] - sh.center[2] << ' ' << X[std::size_t(n + i)] - sh.center[1] << '\n';
       }
   };
-  r.run = st::run_scene(scene_text(s, rate, mu, dt, t_end), tag, every, resumable, opt, hooks);
+  r.run = st::run_scene(scene_text(s, rate, mu, dt, t_end), tag, every, resumable, opt, hooks, max_seconds);
   for (const std::vector<double>& row : r.run.samples) r.samples.push_back(from_row(row));
   for (int k = 0; k < 4; ++k) {
     std::ifstream f(outline_file(k));
@@ -305,8 +305,11 @@ int main(int argc, char** argv) {
                           "volume_change_rel", "force_growth", "stopped_ms"},
                          {"1/s", "cP", "", "us", "ms", "", "s", "", "", "", "", "", "deg", "", "", "", "ms"});
     Json outl = st::table({"rate_1_s", "mu_cP", "t_ms", "z_um", "y_um"}, {"1/s", "cP", "ms", "um", "um"});
-    for (const auto& [rate, mu, step, t_end] : cases) {
-      const Run r = shear_run(s, rate, mu, step, t_end, std::max(1, int(std::lround(t_end / step / samples))), opt, full);
+    const st::Sitting sitting;  // full scale: a sitting's wall time, shared by the runs still to come
+    for (std::size_t c = 0; c < cases.size(); ++c) {
+      const auto& [rate, mu, step, t_end] = cases[c];
+      const Run r = shear_run(s, rate, mu, step, t_end, std::max(1, int(std::lround(t_end / step / samples))), opt, full, "",
+                              sitting.remaining() / double(cases.size() - c));
       const Analysis a = analyse(r);
       const std::size_t stride = std::max<std::size_t>(1, a.t.size() / 200);
       for (std::size_t i = 0; i < a.t.size(); i += stride)
@@ -335,6 +338,7 @@ int main(int argc, char** argv) {
       results["values"]["volume_change_" + k] = a.volume_change;
       results["values"]["force_growth_" + k] = a.force_growth;
       results["values"]["completed_" + k] = r.run.stopped.empty() ? 1.0 : 0.0;
+      results["values"]["finished_" + k] = r.run.finished ? 1.0 : 0.0;  // reached its end (or was stopped)
     }
     results["tables"]["orientation"] = ts;
     results["tables"]["summary"] = sum;

@@ -20,7 +20,7 @@
 // than 4% (Fig. 5.6); the smallest distances between cells; volumes; the hematocrit.
 //   full:  the seed's sizes (h = 0.2 um, red cells 2,500 / 10,000 sites, platelets 900 / 900,
 //          16,000 endothelium points, dt = 50 ns), 4 starting times, 40 ms per run, continued from
-//          checkpoints; CHAPTER5_WHOLE_BLOOD_SECONDS limits one sitting's wall time;
+//          checkpoints; RBFIB_SITTING_SECONDS limits one sitting's wall time;
 //   quick: h = 0.4 um, red cells 400 / 1,600, platelets 400 / 400, 4,096 endothelium points (the
 //          seed's spacing in units of h), dt = 100 ns (the tethers' explicit limit ~ mu h / (k
 //          points per h^2)); the procedure compressed: the wall turns over 20 us, the flow settles
@@ -291,10 +291,8 @@ int main(int argc, char** argv) {
     const bool full = opt.scale == st::Scale::full;
     const Setup s = full ? Setup{0.2 * um, 50 * units::ns, 2500, 10000, 900, 16000, 7.2 * ms, 17 * ms, 3 * ms, 40 * ms, 4, {flat, bumpy}, 400}
                          : Setup{0.4 * um, 100 * units::ns, 400, 1600, 400, 4096, 20 * us, 30 * us, 10 * us, 80 * us, 1, {bumpy}, 10};
-    double budget = INFINITY;  // wall seconds for this sitting (full scale)
-    if (const char* b = std::getenv("CHAPTER5_WHOLE_BLOOD_SECONDS")) budget = std::atof(b);
-    const auto t_begin = std::chrono::steady_clock::now();
-    auto remaining = [&] { return budget - std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count(); };
+    const st::Sitting sitting;  // full scale: this sitting's wall time
+    auto remaining = [&] { return sitting.remaining(); };
 
     Json results = st::make_results(opt);
     Json& P = results["parameters"];

@@ -1,5 +1,6 @@
 #include "common/study.hpp"
 
+#include "rbfib/core/error.hpp"
 #include "rbfib/core/exec.hpp"
 
 #include <omp.h>
@@ -94,6 +95,18 @@ void write_results(const Options& opt, const Json& results) {
 }
 
 void log(const Options& opt, const std::string& message) { std::cout << "[" << opt.name << "] " << message << std::endl; }
+
+Sitting::Sitting() : limit_(INFINITY), start_(std::chrono::steady_clock::now()) {
+  if (const char* v = std::getenv("RBFIB_SITTING_SECONDS")) {
+    char* end = nullptr;
+    limit_ = std::strtod(v, &end);
+    if (end == v || *end != '\0' || !(limit_ > 0)) throw InputError("RBFIB_SITTING_SECONDS", v, "must be a positive number of seconds");
+  }
+}
+
+double Sitting::remaining() const {
+  return limit_ - std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
 
 std::string source_commit() {
   const char* c = std::getenv("RBFIB_COMMIT");

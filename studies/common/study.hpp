@@ -37,6 +37,18 @@ void write_results(const Options& opt, const Json& results);
 /// full-scale runs so that a result is traced to the code that computed it.
 std::string source_commit();
 
+/// A sitting: wall seconds from now that a full-scale run continued over several sittings may take
+/// before it saves its checkpoint and reports what it has (RBFIB_SITTING_SECONDS; unset: no limit).
+/// Throws InputError for a value that is not a positive number.
+class Sitting {
+ public:
+  Sitting();
+  double remaining() const;  ///< s (infinite without a limit)
+ private:
+  double limit_;
+  std::chrono::steady_clock::time_point start_;
+};
+
 /// Prints "[name] message" to stdout, flushed (progress on long runs).
 void log(const Options& opt, const std::string& message);
 
