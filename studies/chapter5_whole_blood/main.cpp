@@ -233,8 +233,8 @@ RunSample sample_run(const sim::ImmersedBoundary& ib, bool red, const Domain& bo
     const auto& vol = ib.diagnostics(pb).volume;
     q.volume = vol.empty() ? NAN : vol[std::size_t(c)] / std::pow(um, 3);
     const double radius = 1.55 * um;
-    for (std::size_t i = 0; i < XR.size() / 3; ++i) {
-      const std::size_t m = XR.size() / 3;
+    const std::size_t m = XR.size() / 3;
+    for (std::size_t i = 0; i < m; ++i) {
       const double dx = std::remainder(XR[i] - q.center[0], box.Lx), dz = std::remainder(XR[2 * m + i] - q.center[2], box.Lz);
       if (dx * dx + dz * dz < radius * radius) q.headroom = std::min(q.headroom, XR[m + i] - q.center[1]);
     }
