@@ -23,8 +23,9 @@
 //          checkpoints; RBFIB_SITTING_SECONDS limits one sitting's wall time;
 //   quick: h = 0.4 um, red cells 400 / 1,600, platelets 400 / 400, 4,096 endothelium points (the
 //          seed's spacing in units of h), dt = 100 ns (the tethers' explicit limit is about
-//          2 mu / (k n_A h), n_A points per area: 128 ns here, 64 ns at the seed's h); the procedure compressed: the wall turns over 20 us, the flow settles
-//          to 30 us, one starting time, 80 us per run; the bumpy wall with and without red cells.
+//          2 mu / (k n_A h), n_A points per area: 128 ns here, 64 ns at the seed's h); the
+//          procedure compressed: the wall turns over 20 us, the flow settles to 30 us, one
+//          starting time, 80 us per run; the bumpy wall with and without red cells.
 //
 // Run:   build/studies/study_chapter5_whole_blood --scale quick --out runs/chapter5_whole_blood
 #include "chapter5_whole_blood/initialization.hpp"
