@@ -119,11 +119,13 @@ def run_study(meta, args):
     if results.get("study") != name:
         raise HarnessError(f"study '{name}': {results_path} is for study '{results.get('study')}'")
     outcome = checks.evaluate(ref, results)
-    summary = report.render(meta, ref, results, outcome, os.path.join(args.reports, name), info)
+    # Quick reports in reports/<name>, full-scale ones beside them in reports/<name>-full.
+    out_dir = os.path.join(args.reports, name if args.scale == "quick" else f"{name}-{args.scale}")
+    summary = report.render(meta, ref, results, outcome, out_dir, info)
     for c in outcome:
         print(f"  {c['status']:7s} {c['id']}: {c['detail']}")
     print(f"harness: {name}: {summary['passed']} passed, {summary['failed']} failed, {summary['differs']} known differences; "
-          f"report {os.path.join(args.reports, name, 'README.md')}", flush=True)
+          f"report {os.path.join(out_dir, 'README.md')}", flush=True)
     return summary
 
 

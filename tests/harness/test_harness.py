@@ -1,4 +1,5 @@
 """Tests of the harness: the checks can fail, bad input gives one clear line and a non-zero exit."""
+import json
 import os
 import shutil
 import subprocess
@@ -118,6 +119,30 @@ class BadInput(unittest.TestCase):
             with open(os.path.join(tmp, "reference", "fake.yaml"), "w") as f:
                 f.write("study: fake\nsource: x\nchecks:\n  - {id: a, kind: bound, source: y, value: v, max: 1}\n")
             self.assert_one_line_error(harness("run", "fake", "--no-run", root=tmp), "speed_vs_error")
+        finally:
+            shutil.rmtree(tmp)
+
+    def test_full_scale_reports_go_beside_the_quick_ones(self):
+        tmp = tempfile.mkdtemp()
+        try:
+            os.makedirs(os.path.join(tmp, "studies", "fake"))
+            os.makedirs(os.path.join(tmp, "reference"))
+            os.makedirs(os.path.join(tmp, "runs", "fake", "full"))
+            with open(os.path.join(tmp, "studies", "fake", "study.yaml"), "w") as f:
+                f.write("name: fake\nchapter: chapter0\ntitle: fake\nreproduces: [nothing]\ndescription: a test\n")
+            with open(os.path.join(tmp, "reference", "fake.yaml"), "w") as f:
+                f.write("study: fake\nsource: x\nchecks:\n  - {id: a, kind: bound, source: y, value: v, max: 1}\n"
+                        "figures:\n  - {id: speed_vs_error, table: t, x: s, y: e}\n")
+            with open(os.path.join(tmp, "runs", "fake", "full", "results.json"), "w") as f:
+                json.dump({"study": "fake", "scale": "full", "values": {"v": 0.5},
+                           "tables": {"t": {"columns": ["s", "e"], "units": ["s", ""], "rows": [[1.0, 0.1], [2.0, 0.05]]}}}, f)
+            reports = os.path.join(tmp, "reports")
+            proc = harness("run", "fake", "--scale", "full", "--no-run", "--out", os.path.join(tmp, "runs"), "--reports", reports, root=tmp)
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            self.assertTrue(os.path.isfile(os.path.join(reports, "fake-full", "README.md")))
+            self.assertFalse(os.path.exists(os.path.join(reports, "fake")))
+            with open(os.path.join(reports, "README.md")) as f:
+                self.assertIn("fake-full/README.md", f.read())
         finally:
             shutil.rmtree(tmp)
 
