@@ -27,6 +27,16 @@ void add_field(double* f, const double* b, index_t n) {
   for_each_index(n, [=] RBFIB_HD(index_t i) { f[i] += b[i]; });
 }
 
+/// X += dt (U + u_c) at n points (X[d n + i]): the update of eq. (87) with eq. (95)'s constant
+/// velocity. (A device lambda may not sit inside the private Run::Impl.)
+void advance_points(double* X, const double* U, index_t n, double dt, const double uc[3]) {
+  const double ucx = uc[0], ucy = uc[1], ucz = uc[2];
+  for_each_index(3 * n, [=] RBFIB_HD(index_t i) {
+    const double ucd = i < n ? ucx : (i < 2 * n ? ucy : ucz);
+    X[i] += dt * (U[i] + ucd);
+  });
+}
+
 /// Volume, area and volume centroid of a closed triangulated surface X (n x 3 column-major).
 void polyhedron(const std::vector<surface::Triangle>& tris, const std::vector<double>& X, double c[3], double& volume,
                 double& area) {
@@ -371,14 +381,7 @@ struct Run::Impl {
     }
     if (m.with_cell) {
       if (m.method == chapter3::Method::shvd) {
-        const double dt = m.dt;
-        const double ucx = uc[0], ucy = uc[1], ucz = uc[2];
-        const double* Up = ptr(U);
-        const index_t nm = n_cell;
-        for_each_index(3 * nm, [=] RBFIB_HD(index_t i) {
-          const double ucd = i < nm ? ucx : (i < 2 * nm ? ucy : ucz);
-          Xm[i] += dt * (Up[i] + ucd);
-        });
+        advance_points(Xm, ptr(U), n_cell, m.dt, uc);
       } else {
         thrust::copy(U.begin(), U.end(), Uh.begin());
         const std::size_t n = X.size() / 3;
