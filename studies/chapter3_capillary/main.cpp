@@ -23,7 +23,7 @@
 // (spacing h/2), where dt = 1e-4 s loses every run near t = 7 ms and dt = 5e-5 s does not (table
 // runs_eta96; the reference's conventions: grid). At full scale each run keeps a checkpoint
 // DIR/run_<label>_eta<eta>.bin (every 5 minutes of wall time and at its end) and continues from
-// it when the command is run again; RBFIB_CAPILLARY_BUDGET_S (seconds) bounds this sitting's wall
+// it when the command is run again; RBFIB_SITTING_SECONDS (seconds) bounds this sitting's wall
 // time: runs left unfinished are reported with their time per step and projected time to solution.
 // RBFIB_CAPILLARY_KEEP=1 keeps checkpoints at quick scale too (to test resuming).
 //
@@ -66,20 +66,13 @@ struct Setup {
   int eta;
   index_t n;
   std::vector<int> flow_etas;  ///< grids of the empty-capillary study
-  double budget;               ///< wall seconds for this sitting
   explicit Setup(const st::Options& o)
       : opt(o),
         full(o.scale == st::Scale::full),
         keep(full || (std::getenv("RBFIB_CAPILLARY_KEEP") && std::string(std::getenv("RBFIB_CAPILLARY_KEEP")) == "1")),
         eta(full ? 64 : 48),
         n(full ? 8281 : 2049),
-        flow_etas(full ? std::vector<int>{64, 96, 128} : std::vector<int>{32, 48, 64}),
-        budget(1e300) {
-    if (const char* b = std::getenv("RBFIB_CAPILLARY_BUDGET_S")) {
-      budget = std::atof(b);
-      require(budget > 0, "RBFIB_CAPILLARY_BUDGET_S (s)", b, "must be a positive number of seconds");
-    }
-  }
+        flow_etas(full ? std::vector<int>{64, 96, 128} : std::vector<int>{32, 48, 64}) {}
   Model base() const {
     Model m;
     m.eta = eta;
@@ -106,9 +99,8 @@ std::vector<CellCase> cell_cases() {
 /// Runs (or resumes, or reads back) one run; at full scale keeps its checkpoint.
 class Runner {
  public:
-  explicit Runner(const Setup& S) : S_(S), t0_(std::chrono::steady_clock::now()) {}
-
-  double elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
+  explicit Runner(const Setup& S) : S_(S) {}
+  double elapsed() const { return sitting_.elapsed(); }
 
   /// Advances `run` to its end (or to the sitting's budget). Returns whether it is over.
   bool go(Run& run, const std::string& label) {
@@ -118,7 +110,7 @@ class Runner {
     if (S_.keep && run.load(path, tag))
       st::log(S_.opt, label + ": resumed from " + path + " at step " + to_text(run.step()));
     while (!run.done()) {
-      const double left = S_.budget - elapsed();
+      const double left = sitting_.remaining();
       if (left <= 0) break;
       run.advance(std::min(S_.keep ? 300.0 : 1e300, left));
       if (S_.keep) run.save(path, tag);
@@ -132,7 +124,7 @@ class Runner {
 
  private:
   const Setup& S_;
-  std::chrono::steady_clock::time_point t0_;
+  const st::Sitting sitting_;  // full scale: this sitting's wall time (RBFIB_SITTING_SECONDS)
 };
 
 // ---- shape measures ------------------------------------------------------------------------------

@@ -104,9 +104,9 @@ Sitting::Sitting() : limit_(INFINITY), start_(std::chrono::steady_clock::now()) 
   }
 }
 
-double Sitting::remaining() const {
-  return limit_ - std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-}
+double Sitting::elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+double Sitting::remaining() const { return limit_ - elapsed(); }
 
 std::string source_commit() {
   const char* c = std::getenv("RBFIB_COMMIT");

@@ -44,6 +44,7 @@ class Sitting {
  public:
   Sitting();
   double remaining() const;  ///< s (infinite without a limit)
+  double elapsed() const;    ///< s since the sitting began
  private:
   double limit_;
   std::chrono::steady_clock::time_point start_;
