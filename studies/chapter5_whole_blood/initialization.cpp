@@ -63,7 +63,8 @@ void clearances(const std::vector<double>& X, index_t n, const Domain& box, doub
   }
 }
 
-/// The distance from the sites of a cell (n x 3) to the red cells' sites (n_r x 3N layout).
+}  // namespace
+
 double distance_to_red_cells(const std::vector<double>& X, index_t n, const std::vector<double>& red, index_t n_red, const Domain& box,
                              double cutoff) {
   if (red.empty()) return INFINITY;
@@ -78,7 +79,15 @@ double distance_to_red_cells(const std::vector<double>& X, index_t n, const std:
   return closest;
 }
 
-}  // namespace
+std::vector<double> batch_layout(const ReferenceSites& r, const std::vector<cells::Placement>& placements) {
+  const std::size_t n = std::size_t(r.n), N = placements.size();
+  std::vector<double> X(3 * n * N);
+  for (std::size_t c = 0; c < N; ++c) {
+    const std::vector<double> Y = cells::placed(r.X, r.n, placements[c], "cell " + std::to_string(c));
+    for (std::size_t d = 0; d < 3; ++d) std::copy_n(Y.begin() + long(d * n), n, X.begin() + long((d * N + c) * n));
+  }
+  return X;
+}
 
 ReferenceSites reference_sites(const cells::CellTypeSpec& spec) {
   const surface::SphereSites& z = spec.data_sites;

@@ -97,6 +97,15 @@ PlateletPlacement place_platelets(const ReferenceSites& platelet, const Domain& 
 double cell_distance(const std::vector<double>& A, index_t na, const std::vector<double>& B, index_t nb, const Domain& box,
                      double cutoff = INFINITY);
 
+/// The smallest distance from the sites of a cell (n x 3) to red cells given in a batch's layout
+/// (n_red x 3N, X[(d N + c) n_red + i]; infinite for none). Distances above `cutoff` may be
+/// returned as a lower bound.
+double distance_to_red_cells(const std::vector<double>& X, index_t n, const std::vector<double>& red, index_t n_red, const Domain& box,
+                             double cutoff = INFINITY);
+
+/// Cells of one reference shape placed, in a batch's layout (n x 3N, X[(d N + c) n + i]).
+std::vector<double> batch_layout(const ReferenceSites& r, const std::vector<cells::Placement>& placements);
+
 /// The smallest distance from the sites of a cell to points E (3m) spread over the whole period in x
 /// and z (the endothelium), each pair at its nearest periodic image.
 double sheet_distance(const std::vector<double>& X, index_t n, const std::vector<double>& E, const Domain& box);

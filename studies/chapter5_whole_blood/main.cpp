@@ -211,17 +211,20 @@ RunSample sample_run(const sim::ImmersedBoundary& ib, bool red, const Domain& bo
   const index_t pb = red ? 1 : 0;
   const cells::Batch& P = ib.batch(pb);
   const index_t n = P.type().n_data(), N = P.size();
-  const std::vector<double> X = P.positions_host(), S = P.state().to_host();  // n x 3N; n x 6N: X then U
+  const std::vector<double> S = P.state().to_host();  // n x 6N: X then U
+  const std::vector<double> X(S.begin(), S.begin() + long(3 * N * n));
   const std::vector<double> E = host(ib.points(0).X);
   std::vector<double> XR;
   index_t nr = 0, Nr = 0;
   if (red) XR = ib.batch(0).positions_host(), nr = ib.batch(0).type().n_data(), Nr = ib.batch(0).size();
+  if (red) out.platelet_red_gap = INFINITY;
   for (index_t c = 0; c < N && c < 2; ++c) {
     PlateletSample& q = out.p[c];
     const st::CellShape shape = st::cell_shape(X, n, N, c);
     q.center = shape.center, q.axis = shape.axes[0], q.extent = shape.extent;
     const std::vector<double> Y = cell_sites(X, n, N, c);
     q.to_endothelium = sheet_distance(Y, n, E, box);
+    if (red) out.platelet_red_gap = std::min(out.platelet_red_gap, distance_to_red_cells(Y, n, XR, nr, box));
     q.clearance = INFINITY;
     for (index_t i = 0; i < n; ++i)
       q.clearance = std::min(q.clearance, Y[std::size_t(n + i)] - box.endothelium.height(Y[std::size_t(i)], Y[std::size_t(2 * n + i)]));
@@ -242,11 +245,6 @@ RunSample sample_run(const sim::ImmersedBoundary& ib, bool red, const Domain& bo
   }
   if (red) {
     out.red_gap = closest_pair(XR, nr, Nr, box);
-    out.platelet_red_gap = INFINITY;
-    for (index_t c = 0; c < Nr; ++c) {
-      const std::vector<double> Y = cell_sites(XR, nr, Nr, c);
-      for (index_t p = 0; p < N; ++p) out.platelet_red_gap = std::min(out.platelet_red_gap, cell_distance(cell_sites(X, n, N, p), n, Y, nr, box));
-    }
     const auto& vol = ib.diagnostics(0).volume;
     if (!vol.empty()) {
       out.red_volume_min = *std::min_element(vol.begin(), vol.end()) / std::pow(um, 3);
@@ -362,17 +360,7 @@ int main(int argc, char** argv) {
         // An example for `rbfib run` (scenes/whole_blood_*.yaml): the same layout with platelets placed
         // by the same algorithm against the red cells as laid out, the flow from rest, 40 us.
         std::mt19937_64 erng(seed + 50 + wi);
-        std::vector<double> red;
-        for (const cells::Placement& p : layout.red_cells) {
-          const std::vector<double> X = cells::placed(rbc.X, rbc.n, p, "red cell");
-          red.insert(red.end(), X.begin(), X.end());
-        }
-        // place_platelets reads the red cells in a batch's layout (n x 3N): regroup the cells' n x 3 blocks.
-        std::vector<double> batch(red.size());
-        for (std::size_t c = 0; c < 8; ++c)
-          for (int d = 0; d < 3; ++d)
-            std::copy_n(red.begin() + long((3 * c + std::size_t(d)) * std::size_t(rbc.n)), rbc.n,
-                        batch.begin() + long((std::size_t(d) * 8 + c) * std::size_t(rbc.n)));
+        const std::vector<double> batch = batch_layout(rbc, layout.red_cells);
         PlateletSpec ps;
         ps.min_separation = 3.1 * um + 4 * s.h;
         const std::vector<double> E = host(scene::parse_scene(init_text, "init").point_sets.at(0).X);

@@ -61,12 +61,7 @@ TEST(WholeBloodInit, PlateletsFaceTheEndotheliumAtTheDrawnGap) {
   ls.h = 0.2 * um;
   std::mt19937_64 rng(11);
   const Layout L = red_cell_layout(r, bumpy, ls, rng);
-  std::vector<double> red(std::size_t(3 * 8 * r.n));  // n x 3N, X[(d N + c) n + i]
-  for (std::size_t c = 0; c < 8; ++c) {
-    const std::vector<double> X = sites_of(r, L.red_cells[c]);
-    for (int d = 0; d < 3; ++d)
-      std::copy_n(X.begin() + long(d * r.n), r.n, red.begin() + long((std::size_t(d) * 8 + c) * std::size_t(r.n)));
-  }
+  const std::vector<double> red = batch_layout(r, L.red_cells);  // n x 3N, X[(d N + c) n + i]
   // An endothelium of 4,096 points on the bumpy surface (a lattice is enough here).
   std::vector<double> E(3 * 4096);
   for (int i = 0; i < 64; ++i)
