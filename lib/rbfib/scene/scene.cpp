@@ -21,6 +21,8 @@ namespace rbfib::scene {
 
 namespace {
 
+constexpr double pi = 3.14159265358979323846;
+
 /// A type's reference shape at its data sites, n x 3 column-major (cm), without building it.
 std::vector<double> reference_sites(const CellTypeEntry& t) {
   const surface::SphereSites& z = t.spec.data_sites;
@@ -394,7 +396,6 @@ std::vector<double> read_point_surface(const Fields& f, const Scene& s) {
   if (!(bump >= 0 && at + bump <= s.grid.length[normal]))
     throw InputError(g.at("bump"), to_text(bump / units::um) + " um", "must be >= 0 and keep the surface inside the box");
   g.finish();
-  constexpr double pi = 3.14159265358979323846;
   const EndotheliumSurface surface{at, bump, La, Lb};
   const surface::SphereSites t = surface::toroidal_spiral(N);  // lambda: theta, theta: phi
   X.resize(static_cast<std::size_t>(3 * N));
@@ -409,14 +410,12 @@ std::vector<double> read_point_surface(const Fields& f, const Scene& s) {
 }  // namespace
 
 double EndotheliumSurface::height(double s, double t) const {
-  constexpr double pi = 3.14159265358979323846;
   const double theta = 2 * pi * s / Ls, phi = 2 * pi * t / Lt;
   const double c = std::cos(theta - phi), sh = std::sin(phi / 2);
   return y0 + bump * c * c * sh * sh;
 }
 
 std::array<double, 3> EndotheliumSurface::normal(double s, double t) const {
-  constexpr double pi = 3.14159265358979323846;
   const double theta = 2 * pi * s / Ls, phi = 2 * pi * t / Lt;
   const double c = std::cos(theta - phi), sh = std::sin(phi / 2), s2 = std::sin(2 * (theta - phi));
   // d height / d theta = -bump sin(2 (theta - phi)) sin^2(phi/2);
@@ -670,8 +669,8 @@ std::string describe(const Scene& s) {
         const WallMotion& m = s.walls[d][side];
         o << (side ? ", upper " : " (lower ");
         if (m.turning)
-          o << m.speed * 10 << " mm/s turning from " << m.from * 180 / 3.14159265358979323846 << " to "
-            << m.to * 180 / 3.14159265358979323846 << " deg over " << m.over / units::ms << " ms";
+          o << m.speed * 10 << " mm/s turning from " << m.from * 180 / pi << " to "
+            << m.to * 180 / pi << " deg over " << m.over / units::ms << " ms";
         else
           o << "[" << m.velocity[0] * 10 << ", " << m.velocity[1] * 10 << ", " << m.velocity[2] * 10 << "] mm/s";
         o << (side ? ")" : "");
