@@ -1,5 +1,7 @@
 """Discovers studies (studies/<name>/study.yaml) and loads their reference files."""
+import hashlib
 import os
+import subprocess
 
 import yaml
 
@@ -80,6 +82,14 @@ def reference(root, name):
                 raise HarnessError(f"reference {path}: check '{cid}' lacks the field '{field}'")
         if c["kind"] not in CHECK_KINDS:
             raise HarnessError(f"reference {path}: check '{cid}' has kind '{c['kind']}', not one of {sorted(CHECK_KINDS)}")
+        if "when" in c:
+            raise HarnessError(f"reference {path}: check '{cid}' has 'when', which is now 'run: <id>' "
+                               "(the run it measures, from the results' runs)")
+        run = c.get("run")
+        if run is not None and not (isinstance(run, str) or (isinstance(run, list) and run and all(isinstance(r, str) for r in run))):
+            raise HarnessError(f"reference {path}: check '{cid}' has run = {run!r}; expected a run id or a list of them")
+        if not isinstance(c.get("speed", False), bool):
+            raise HarnessError(f"reference {path}: check '{cid}' has speed = {c['speed']!r}; expected true or false")
         if cid in seen:
             raise HarnessError(f"reference {path}: check id '{cid}' appears twice")
         seen.add(cid)
@@ -91,3 +101,58 @@ def reference(root, name):
     if not any(f.get("id") == "speed_vs_error" for f in figures):
         raise HarnessError(f"reference {path}: no figure 'speed_vs_error' (every study reports wall time against error)")
     return ref
+
+
+def _digest(files):
+    """sha256 over (relative path, content) pairs, in path order; the first 12 hex digits."""
+    h = hashlib.sha256()
+    for rel, data in sorted(files):
+        h.update(rel.encode() + b"\0" + data + b"\0")
+    return h.hexdigest()[:12]
+
+
+def _read(root, rel):
+    with open(os.path.join(root, rel), "rb") as f:
+        return f.read()
+
+
+def source_files(root, name):
+    """The files whose change makes a study's report stale: its driver's folder studies/<name>/
+    and its reference file. Paths relative to root."""
+    out = [os.path.join("reference", f"{name}.yaml")]
+    base = os.path.join(root, "studies", name)
+    for d, _, files in os.walk(base):
+        out += [os.path.relpath(os.path.join(d, f), root) for f in files]
+    return out
+
+
+def driver_hash(root, name):
+    """Hash of the driver's sources (studies/<name>/) as they are in the tree now."""
+    files = [p for p in source_files(root, name) if p.startswith("studies")]
+    return _digest((p, _read(root, p)) for p in files)
+
+
+def reference_hash(root, name):
+    p = os.path.join("reference", f"{name}.yaml")
+    return _digest([(p, _read(root, p))])
+
+
+def driver_hash_at(root, name, commit):
+    """The same hash for the sources at a git commit (for reports that recorded only their commit);
+    None when git or the commit is not available, or the commit had uncommitted changes."""
+    if not commit or commit == "unknown" or "+" in commit:
+        return None
+    try:
+        ls = subprocess.run(["git", "-C", root, "ls-tree", "-r", "--name-only", commit, f"studies/{name}/"],
+                            capture_output=True, timeout=20)
+        if ls.returncode != 0:
+            return None
+        files = []
+        for p in ls.stdout.decode().split():
+            blob = subprocess.run(["git", "-C", root, "show", f"{commit}:{p}"], capture_output=True, timeout=20)
+            if blob.returncode != 0:
+                return None
+            files.append((p, blob.stdout))
+        return _digest(files) if files else None
+    except (OSError, subprocess.SubprocessError):
+        return None

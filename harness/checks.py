@@ -162,38 +162,72 @@ def check_bound(tabs, results, c):
 KINDS = {"value": check_value, "order": check_order, "bound": check_bound}
 
 
-def evaluate(reference, results):
-    """List of dicts: id, source, kind, passed, status, detail.
+def _run_line(rid, run):
+    """'run X unfinished: 29% (8.8 of 30 ms), 0.045 s per step, about 7.1 hours to go here'."""
+    if run is None:
+        return f"run '{rid}' is not recorded in the results"
+    bits = []
+    if isinstance(run.get("progress"), (int, float)):
+        bits.append(f"{100 * run['progress']:.3g}% done")
+    if run.get("simulated"):
+        bits.append(str(run["simulated"]))
+    if isinstance(run.get("seconds_per_step"), (int, float)) and math.isfinite(run["seconds_per_step"]):
+        bits.append(f"{run['seconds_per_step']:.3g} s per step")
+    hours = run.get("hours_to_go")
+    if isinstance(hours, (int, float)) and math.isfinite(hours):
+        bits.append(f"about {hours:.3g} hours to go here")
+    return f"run '{rid}' unfinished" + (f" ({', '.join(bits)})" if bits else "")
 
-    status is PASS, FAIL, or DIFFERS: a failed check whose reference carries `known_difference`
-    (the investigated reason our number differs from the paper's). DIFFERS is shown beside the
-    reason in the report and does not fail the run; a check that passes again is PASS. A check
-    with `scales: [full]` (say) is evaluated at those scales only; at another it is NOT RUN,
-    counted apart from passes and failures (a quick window too short for what it measures). A check
-    with `when: <value>` is NOT RUN while that value is 0 or absent (a long run not yet finished).
+
+def unfinished_runs(results, c):
+    """Why a check that measures resumable runs (`run: id` or a list of ids) cannot be judged yet:
+    one line per run that is unrecorded or not finished; empty when every run has finished."""
+    ids = c.get("run")
+    if ids is None:
+        return []
+    ids = ids if isinstance(ids, list) else [ids]
+    runs = results.get("runs") or {}
+    return [_run_line(r, runs.get(r)) for r in ids if not (runs.get(r) or {}).get("finished")]
+
+
+def _outcome(c, status, passed, detail):
+    return {"id": c["id"], "source": c["source"], "kind": c["kind"], "passed": bool(passed), "status": status,
+            "detail": detail, "why": c.get("why", ""), "known_difference": c.get("known_difference", ""),
+            "speed": bool(c.get("speed", False))}
+
+
+def evaluate(reference, results):
+    """List of dicts: id, source, kind, passed, status, detail, speed.
+
+    status is one of:
+    - PASS;
+    - FAIL: the check failed, or it could not be evaluated (a table, column or value missing, null,
+      NaN or infinite: a value never measured never passes, with or without a known difference);
+    - DIFFERS: a check that was evaluated and failed, whose reference carries `known_difference`
+      (the investigated reason our number differs from the paper's); it does not fail the run;
+    - NOT RUN: a check with `scales: [...]` at another scale, or with `run: <id>` (or a list) while
+      a run it measures is unfinished or unrecorded in the results' `runs`; the detail says how far
+      the run is and the hours to go. Counted apart from passes and failures.
+    `speed` marks checks that measure speed (`speed: true` in the reference): reported as any other
+    check, but a gate for correctness only (`--gate correctness`) does not fail on them.
     """
     tabs = tables(results)
     out = []
     for c in reference["checks"]:
         scales = c.get("scales")
         if scales is not None and results.get("scale") not in scales:
-            out.append({"id": c["id"], "source": c["source"], "kind": c["kind"], "passed": True, "status": "NOT RUN",
-                        "detail": f"evaluated at {', '.join(scales)} scale only", "why": c.get("why", ""),
-                        "known_difference": c.get("known_difference", "")})
+            out.append(_outcome(c, "NOT RUN", True, f"evaluated at {', '.join(scales)} scale only"))
             continue
-        when = c.get("when")
-        if when is not None and not (results.get("values") or {}).get(when):
-            out.append({"id": c["id"], "source": c["source"], "kind": c["kind"], "passed": True, "status": "NOT RUN",
-                        "detail": f"the run it measures is unfinished ({when} = 0): continued at the next start",
-                        "why": c.get("why", ""), "known_difference": c.get("known_difference", "")})
+        waiting = unfinished_runs(results, c)
+        if waiting:
+            out.append(_outcome(c, "NOT RUN", True, "; ".join(waiting)))
             continue
         try:
             passed, detail = KINDS[c["kind"]](tabs, results, c)
+            status = "PASS" if passed else ("DIFFERS" if c.get("known_difference") else "FAIL")
         except CheckError as e:
-            passed, detail = False, f"cannot evaluate: {e}"
+            passed, detail, status = False, f"cannot evaluate: {e}", "FAIL"
         except KeyError as e:
             raise HarnessError(f"check '{c['id']}' lacks the field {e}")
-        status = "PASS" if passed else ("DIFFERS" if c.get("known_difference") else "FAIL")
-        out.append({"id": c["id"], "source": c["source"], "kind": c["kind"], "passed": bool(passed), "status": status,
-                    "detail": detail, "why": c.get("why", ""), "known_difference": c.get("known_difference", "")})
+        out.append(_outcome(c, status, passed, detail))
     return out

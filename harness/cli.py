@@ -27,10 +27,14 @@ def parse(argv):
     r.add_argument("--out", default=os.path.join(ROOT, "runs"), help="where run directories go")
     r.add_argument("--reports", default=os.path.join(ROOT, "reports"), help="where reports go")
     r.add_argument("--no-run", action="store_true", help="render from the existing results.json, do not run the driver")
+    r.add_argument("--gate", default="all", help="which failed checks fail the command: all (default: reports and "
+                   "`make reproduce`) or correctness (`make test`: checks marked speed are printed, not gating)")
     sub.add_parser("list", help="list the studies")
     a = p.parse_args(argv)
     if a.command == "run" and a.scale not in ("quick", "full"):
         raise HarnessError(f"--scale = '{a.scale}' is not one of: quick, full")
+    if a.command == "run" and a.gate not in ("all", "correctness"):
+        raise HarnessError(f"--gate = '{a.gate}' is not one of: all, correctness")
     return a
 
 
@@ -97,6 +101,7 @@ def run_study(meta, args):
             env["OPENBLAS_CORETYPE"] = core
         info["openblas_coretype"] = env.get("OPENBLAS_CORETYPE", "unset (OpenBLAS's own detection)")
         env["RBFIB_COMMIT"] = info["commit"]  # drivers that keep partial results record it with them
+        info["driver_hash"] = catalog.driver_hash(ROOT, name)  # the sources that computed these results
         proc = subprocess.run([exe, "--scale", args.scale, "--out", run_dir], env=env)
         info["seconds"] = time.monotonic() - t0
         if proc.returncode != 0:
@@ -104,11 +109,7 @@ def run_study(meta, args):
         with open(os.path.join(run_dir, "run.json"), "w") as f:
             json.dump(info, f)
     else:
-        try:
-            with open(os.path.join(run_dir, "run.json")) as f:
-                info.update(json.load(f))
-        except OSError:
-            pass
+        info.update(earlier_run_info(run_dir, report_dir(args, name)))
     if not os.path.isfile(results_path):
         raise HarnessError(f"study '{name}': no results file {results_path}")
     try:
@@ -119,14 +120,41 @@ def run_study(meta, args):
     if results.get("study") != name:
         raise HarnessError(f"study '{name}': {results_path} is for study '{results.get('study')}'")
     outcome = checks.evaluate(ref, results)
-    # Quick reports in reports/<name>, full-scale ones beside them in reports/<name>-full.
-    out_dir = os.path.join(args.reports, name if args.scale == "quick" else f"{name}-{args.scale}")
+    if not info.get("driver_hash"):  # a report older than the hash: the sources at its commit
+        info["driver_hash"] = catalog.driver_hash_at(ROOT, name, info.get("commit")) or "unknown"
+    info["reference_hash"] = catalog.reference_hash(ROOT, name)
+    out_dir = report_dir(args, name)
     summary = report.render(meta, ref, results, outcome, out_dir, info)
     for c in outcome:
-        print(f"  {c['status']:7s} {c['id']}: {c['detail']}")
-    print(f"harness: {name}: {summary['passed']} passed, {summary['failed']} failed, {summary['differs']} known differences; "
-          f"report {os.path.join(out_dir, 'README.md')}", flush=True)
+        print(f"  {c['status']:7s} {c['id']}{' (speed)' if c['speed'] else ''}: {c['detail']}")
+    gating = [c for c in outcome if c["status"] == "FAIL" and not (args.gate == "correctness" and c["speed"])]
+    summary["gating_failures"] = len(gating)
+    note = ""
+    if summary["failed"] > len(gating):
+        note = f" ({summary['failed'] - len(gating)} of them speed checks, reported but not gating here)"
+    print(f"harness: {name}: {summary['passed']} passed, {summary['failed']} failed{note}, {summary['differs']} known differences, "
+          f"{summary['not_run']} not run; report {os.path.join(out_dir, 'README.md')}", flush=True)
     return summary
+
+
+def report_dir(args, name):
+    """Quick reports in reports/<name>, full-scale ones beside them in reports/<name>-full."""
+    return os.path.join(args.reports, name if args.scale == "quick" else f"{name}-{args.scale}")
+
+
+def earlier_run_info(run_dir, out_dir):
+    """What the run being re-rendered recorded (commit, date, wall time, driver hash): its run.json,
+    else the run record of the report rendered from it before."""
+    for path, key in ((os.path.join(run_dir, "run.json"), None), (os.path.join(out_dir, "summary.json"), "run")):
+        try:
+            with open(path) as f:
+                doc = json.load(f)
+            if key is None:
+                return doc
+            return doc.get(key) or {k: doc[k] for k in ("commit", "date", "seconds") if k in doc}
+        except (OSError, json.JSONDecodeError):
+            continue
+    return {}
 
 
 def main(argv):
@@ -148,12 +176,18 @@ def main(argv):
                 print(f"harness: error: {e}", file=sys.stderr)
                 broken.append(m["name"])
         os.makedirs(args.reports, exist_ok=True)
-        report.render_index(args.reports)
+        report.render_index(args.reports, ROOT)
         passed = sum(s["passed"] for s in summaries)
         failed = sum(s["failed"] for s in summaries)
+        gating = sum(s["gating_failures"] for s in summaries)
         print(f"harness: {len(summaries)} studies: {passed} passed, {failed} failed"
+              + (f" ({failed - gating} speed checks, not gating)" if failed > gating else "")
               + (f"; could not run: {', '.join(broken)}" if broken else ""))
-        return 2 if broken else (1 if failed else 0)
+        stale = report.stale_reports(ROOT, args.reports)
+        if stale:
+            print(f"harness: STALE reports (their driver or reference changed since they were made; rerun them): "
+                  + "; ".join(f"{d} ({why})" for d, why in stale))
+        return 2 if broken else (1 if gating else 0)
     except HarnessError as e:
         print(f"harness: error: {e}", file=sys.stderr)
         return 2

@@ -9,6 +9,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from . import catalog  # noqa: E402
 from .checks import Table, fmt, tables  # noqa: E402
 
 MAX_ROWS_SHOWN = 40
@@ -124,17 +125,28 @@ def render(meta, ref, results, outcome, out_dir, run_info):
     L.append("")
     L.append(f"**Scale: {results.get('scale', '?')}.** Checks: **{passed} passed, {failed} failed**"
              + (f", {differs} known difference{'s' if differs > 1 else ''} from the paper (see below)" if differs else "")
-             + (f", {not_run} evaluated at another scale only." if not_run else "."))
+             + (f", {not_run} not run (each line says why: another scale, or a run not finished)." if not_run else "."))
     L.append("")
     L.append(f"Ran on {prov.get('cpu', '?')} ({prov.get('threads', '?')} threads of {prov.get('hardware_threads', '?')}), "
              f"backend {prov.get('backend', '?')}, {prov.get('compiler', '?')}, commit {run_info.get('commit', '?')}, "
              f"{run_info.get('date', '?')}; OMP_WAIT_POLICY={run_info.get('omp_wait_policy', 'unset')}; "
              f"OPENBLAS_CORETYPE={run_info.get('openblas_coretype', 'not recorded')}; "
-             f"driver wall time {run_info.get('seconds', 0):.1f} s.")
+             f"driver wall time {run_info.get('seconds', 0):.1f} s; driver sources {run_info.get('driver_hash', 'unknown')}, "
+             f"reference {run_info.get('reference_hash', 'unknown')} (the index marks the report STALE when they change).")
     L.append("")
+    runs = results.get("runs") or {}
+    if runs:
+        keys = ["finished", "progress", "simulated", "steps", "seconds_per_step", "mean_dt_ns", "hours_to_go", "stopped"]
+        keys = [k for k in keys if any(k in r for r in runs.values())]
+        L += ["## Runs", "", "The resumable runs these results come from; a check that measures an unfinished run is NOT RUN.", "",
+              markdown_table(["run"] + keys, [[rid] + [r.get(k) for k in keys] for rid, r in runs.items()]), ""]
     L += ["## Checks", "", markdown_table(["check", "source", "result", "detail"],
-                                          [[c["id"], c["source"], c["status"] if c["passed"] else f"**{c['status']}**",
+                                          [[c["id"] + (" (speed)" if c.get("speed") else ""), c["source"],
+                                            c["status"] if c["passed"] else f"**{c['status']}**",
                                             c["detail"]] for c in outcome]), ""]
+    if any(c.get("speed") for c in outcome):
+        L += ["Checks marked (speed) measure speed: they count here and in `make reproduce`, but `make test` "
+              "prints them without failing on them (timings move with the machine's load).", ""]
     known = [c for c in outcome if c["status"] == "DIFFERS"]
     if known:
         L += ["### Known differences from the paper", "",
@@ -176,25 +188,56 @@ def render(meta, ref, results, outcome, out_dir, run_info):
     with open(os.path.join(out_dir, "results.json"), "w") as f:
         json.dump(results, f, indent=1)
     summary = {"study": meta["name"], "chapter": meta["chapter"], "title": meta["title"], "scale": results.get("scale"),
-               "passed": passed, "failed": failed, "differs": differs, "date": run_info.get("date"), "commit": run_info.get("commit"),
-               "seconds": run_info.get("seconds")}
+               "passed": passed, "failed": failed, "differs": differs, "not_run": not_run, "date": run_info.get("date"),
+               "commit": run_info.get("commit"), "seconds": run_info.get("seconds"),
+               "driver_hash": run_info.get("driver_hash"), "reference_hash": run_info.get("reference_hash"),
+               "run": {k: v for k, v in run_info.items() if k not in ("reference_hash",)}}
     with open(os.path.join(out_dir, "summary.json"), "w") as f:
         json.dump(summary, f, indent=1)
     return summary
 
 
-def render_index(reports_dir):
-    rows = []
+def _summaries(reports_dir):
     for name in sorted(os.listdir(reports_dir)):
         p = os.path.join(reports_dir, name, "summary.json")
         if os.path.isfile(p):
             with open(p) as f:
-                s = json.load(f)
-            rows.append([f"[{s['study']}]({name}/README.md)", s["chapter"], s["title"], s["scale"],
-                         f"{s['passed']} passed, {s['failed']} failed"
-                         + (f", {s['differs']} known differences" if s.get("differs") else ""),
-                         f"{s.get('seconds') or 0:.0f} s", s.get("date", "")])
-    L = ["# Reports", "", "Rendered by `make reproduce` (quick scale) or `make reproduce-NAME SCALE=full`.", "",
-         markdown_table(["study", "chapter", "what", "scale", "checks", "driver time", "date"], rows), ""]
+                yield name, json.load(f)
+
+
+def staleness(root, s):
+    """Why a report no longer matches the sources (its driver's folder or its reference file
+    changed since it was made), or "" when it is current."""
+    name = s["study"]
+    if not os.path.isfile(os.path.join(root, "reference", f"{name}.yaml")):
+        return "its study no longer exists"
+    why = []
+    if s.get("driver_hash") in (None, "unknown"):
+        why.append("no record of the driver's sources")
+    elif s["driver_hash"] != catalog.driver_hash(root, name):
+        why.append("driver changed since the run")
+    if s.get("reference_hash") != catalog.reference_hash(root, name):
+        why.append("reference changed since the report")
+    return ", ".join(why)
+
+
+def stale_reports(root, reports_dir):
+    """[(report folder, why)] for every stale report under reports_dir."""
+    return [(d, why) for d, s in _summaries(reports_dir) if (why := staleness(root, s))]
+
+
+def render_index(reports_dir, root):
+    rows = []
+    for name, s in _summaries(reports_dir):
+        why = staleness(root, s)
+        rows.append([f"[{s['study']}]({name}/README.md)", s["chapter"], s["title"], s["scale"],
+                     f"{s['passed']} passed, {s['failed']} failed"
+                     + (f", {s['differs']} known differences" if s.get("differs") else "")
+                     + (f", {s['not_run']} not run" if s.get("not_run") else ""),
+                     f"**STALE**: {why}" if why else "current",
+                     f"{s.get('seconds') or 0:.0f} s", s.get("date", "")])
+    L = ["# Reports", "", "Rendered by `make reproduce` (quick scale) or `make reproduce-NAME SCALE=full`. A report is "
+         "STALE when its driver's sources (`studies/<name>/`) or its reference file changed after it was made.", "",
+         markdown_table(["study", "chapter", "what", "scale", "checks", "sources", "driver time", "date"], rows), ""]
     with open(os.path.join(reports_dir, "README.md"), "w") as f:
         f.write("\n".join(L))

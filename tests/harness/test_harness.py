@@ -64,10 +64,32 @@ class Checks(unittest.TestCase):
         self.assertEqual(full["status"], "FAIL")
 
     def test_check_waiting_for_an_unfinished_run(self):
-        c = {"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 2.9, "when": "completed"}
-        self.assertEqual(run_checks(c)[0]["status"], "NOT RUN")
-        done = dict(RESULTS, values=dict(RESULTS["values"], completed=1.0))
+        c = {"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 2.9, "run": "long"}
+        unrecorded = run_checks(c)[0]
+        self.assertEqual(unrecorded["status"], "NOT RUN")
+        self.assertIn("not recorded", unrecorded["detail"])
+        going = dict(RESULTS, runs={"long": {"finished": False, "progress": 0.29, "simulated": "8.8 of 30 ms",
+                                             "seconds_per_step": 0.045, "hours_to_go": 7.1}})
+        out = checks.evaluate({"checks": [c]}, going)[0]
+        self.assertEqual(out["status"], "NOT RUN")
+        for words in ("29% done", "8.8 of 30 ms", "0.045 s per step", "7.1 hours to go"):
+            self.assertIn(words, out["detail"])
+        done = dict(RESULTS, runs={"long": {"finished": True}, "other": {"finished": False}})
         self.assertEqual(checks.evaluate({"checks": [c]}, done)[0]["status"], "FAIL")
+        both = dict(c, run=["long", "other"])  # a check over several runs waits for all of them
+        self.assertEqual(checks.evaluate({"checks": [both]}, done)[0]["status"], "NOT RUN")
+
+    def test_a_value_never_measured_never_passes(self):
+        for v in (None, float("nan"), float("inf")):
+            res = dict(RESULTS, values={"speed": v})
+            for extra in ({}, {"known_difference": "why"}):  # not even as a known difference
+                c = dict({"id": "b", "source": "s", "kind": "bound", "value": "speed", "min": 0.0}, **extra)
+                out = checks.evaluate({"checks": [c]}, res)[0]
+                self.assertEqual(out["status"], "FAIL", (v, extra))
+                self.assertIn("cannot evaluate", out["detail"])
+        absent = {"id": "b", "source": "s", "kind": "value", "value": "nothing", "paper": 1.0, "rtol": 0.1,
+                  "known_difference": "why"}
+        self.assertEqual(run_checks(absent)[0]["status"], "FAIL")
 
     def test_bound_and_missing_data_fail(self):
         self.assertTrue(run_checks({"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 3.0})[0]["passed"])
@@ -143,6 +165,71 @@ class BadInput(unittest.TestCase):
             self.assertFalse(os.path.exists(os.path.join(reports, "fake")))
             with open(os.path.join(reports, "README.md")) as f:
                 self.assertIn("fake-full/README.md", f.read())
+        finally:
+            shutil.rmtree(tmp)
+
+    def fake_study(self, tmp, checks_yaml, values):
+        os.makedirs(os.path.join(tmp, "studies", "fake"), exist_ok=True)
+        os.makedirs(os.path.join(tmp, "reference"), exist_ok=True)
+        os.makedirs(os.path.join(tmp, "runs", "fake", "quick"), exist_ok=True)
+        with open(os.path.join(tmp, "studies", "fake", "study.yaml"), "w") as f:
+            f.write("name: fake\nchapter: chapter0\ntitle: fake\nreproduces: [nothing]\ndescription: a test\n")
+        with open(os.path.join(tmp, "studies", "fake", "main.cpp"), "w") as f:
+            f.write("int main() {}\n")
+        with open(os.path.join(tmp, "reference", "fake.yaml"), "w") as f:
+            f.write("study: fake\nsource: x\nchecks:\n" + checks_yaml + "figures:\n  - {id: speed_vs_error, table: t, x: s, y: e}\n")
+        with open(os.path.join(tmp, "runs", "fake", "quick", "results.json"), "w") as f:
+            json.dump({"study": "fake", "scale": "quick", "values": values,
+                       "tables": {"t": {"columns": ["s", "e"], "units": ["s", ""], "rows": [[1.0, 0.1], [2.0, 0.05]]}}}, f)
+        return ["run", "fake", "--no-run", "--out", os.path.join(tmp, "runs"), "--reports", os.path.join(tmp, "reports")]
+
+    def test_speed_checks_do_not_gate_the_tests(self):
+        tmp = tempfile.mkdtemp()
+        try:
+            speed = "  - {id: fast, kind: bound, source: y, value: v, max: 1, speed: true}\n"
+            right = "  - {id: right, kind: bound, source: y, value: w, max: 1}\n"
+            args = self.fake_study(tmp, speed + right, {"v": 5.0, "w": 0.5})
+            self.assertEqual(harness(*args, root=tmp).returncode, 1)  # reports and `make reproduce` count it
+            proc = harness(*args, "--gate", "correctness", root=tmp)
+            self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
+            self.assertIn("FAIL    fast (speed)", proc.stdout)  # printed all the same
+            args = self.fake_study(tmp, speed + right, {"v": 5.0, "w": 5.0})
+            self.assertEqual(harness(*args, "--gate", "correctness", root=tmp).returncode, 1)  # correctness still gates
+            self.assert_one_line_error(harness(*args, "--gate", "some", root=tmp), "--gate", "some")
+            bad = self.fake_study(tmp, "  - {id: a, kind: bound, source: y, value: w, max: 1, when: done}\n", {"w": 0.5})
+            self.assert_one_line_error(harness(*bad, root=tmp), "'when'", "run:")
+        finally:
+            shutil.rmtree(tmp)
+
+    def test_reports_are_stale_when_their_sources_change(self):
+        tmp = tempfile.mkdtemp()
+        try:
+            args = self.fake_study(tmp, "  - {id: right, kind: bound, source: y, value: w, max: 1}\n", {"w": 0.5})
+            index = os.path.join(tmp, "reports", "README.md")
+            with open(os.path.join(tmp, "runs", "fake", "quick", "run.json"), "w") as f:
+                json.dump({"commit": "abc", "driver_hash": __import__("harness.catalog").catalog.driver_hash(tmp, "fake")}, f)
+            proc = harness(*args, root=tmp)
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            self.assertNotIn("STALE", proc.stdout)
+            with open(index) as f:
+                self.assertIn("current", f.read())
+            with open(os.path.join(tmp, "studies", "fake", "main.cpp"), "a") as f:
+                f.write("// changed\n")
+            with open(os.path.join(tmp, "reference", "fake.yaml"), "a") as f:
+                f.write("# changed\n")
+            harness_root = tmp
+            from harness import report as rep
+            stale = rep.stale_reports(harness_root, os.path.join(tmp, "reports"))
+            self.assertEqual(len(stale), 1)
+            self.assertIn("driver changed", stale[0][1])
+            self.assertIn("reference changed", stale[0][1])
+            # Rendering again from the same results takes the new reference but not the new driver.
+            os.remove(os.path.join(tmp, "runs", "fake", "quick", "run.json"))
+            proc = harness(*args, root=tmp)
+            self.assertIn("STALE", proc.stdout)
+            self.assertIn("fake (driver changed since the run)", proc.stdout)
+            with open(index) as f:
+                self.assertIn("**STALE**", f.read())
         finally:
             shutil.rmtree(tmp)
 
