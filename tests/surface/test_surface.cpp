@@ -493,15 +493,28 @@ TEST(Interpolation, RowRangesOfTheOperatorsEqualTheirRows) {
     const auto sel = select_sample_sites(*ops, row0, rows);
     apply_operators(*sel, Fd.view(), v2.view(), d2.view(), work);
     const auto Vh = V.to_host(), Dh = D.to_host(), vh = v.to_host(), dh = d.to_host(), v2h = v2.to_host(), d2h = d2.to_host();
-    double scale = 0;
-    for (double x : Dh) scale = std::max(scale, std::abs(x));
+    // The three calls multiply the same operator rows by the same columns C (F, or Y^{-1} F by the
+    // same LU solve) in products of other shapes, which BLAS may block and sum differently: any two
+    // orders of a k-term sum differ by at most 2 gamma_{k+2} sum_j |M_ij| |C_jc| (k = columns of M;
+    // the former fixed 1e-13 max|D| was not tied to these sums).
+    const index_t k = ops->value.cols();
+    const std::vector<double> Mv = ops->value.to_host(), Md = ops->derivatives.to_host();
+    const std::vector<double> C = ops->factored() ? work.coefficients.to_host() : F;
+    const double g = 2 * (k + 2) * eps / 2 / (1 - (k + 2) * eps / 2);  // 2 gamma_{k+2}
+    auto tol = [&](const std::vector<double>& M, index_t ld, index_t row, index_t c) {
+      double s = 0;
+      for (index_t j = 0; j < k; ++j) s += std::abs(M[row + j * ld]) * std::abs(C[j + c * nd]);
+      return g * s;
+    };
     for (index_t c = 0; c < cols; ++c)
       for (index_t i = 0; i < rows; ++i) {
-        EXPECT_NEAR(vh[i + c * rows], Vh[row0 + i + c * ns], 1e-13 * scale);
-        EXPECT_NEAR(v2h[i + c * rows], Vh[row0 + i + c * ns], 1e-13 * scale);
+        const double tv = tol(Mv, ns, row0 + i, c);
+        EXPECT_NEAR(vh[i + c * rows], Vh[row0 + i + c * ns], tv);
+        EXPECT_NEAR(v2h[i + c * rows], Vh[row0 + i + c * ns], tv);
         for (int q = 0; q < 5; ++q) {
-          EXPECT_NEAR(dh[q * rows + i + c * 5 * rows], Dh[q * ns + row0 + i + c * 5 * ns], 1e-13 * scale);
-          EXPECT_NEAR(d2h[q * rows + i + c * 5 * rows], Dh[q * ns + row0 + i + c * 5 * ns], 1e-13 * scale);
+          const double td = tol(Md, 5 * ns, q * ns + row0 + i, c);
+          EXPECT_NEAR(dh[q * rows + i + c * 5 * rows], Dh[q * ns + row0 + i + c * 5 * ns], td);
+          EXPECT_NEAR(d2h[q * rows + i + c * 5 * rows], Dh[q * ns + row0 + i + c * 5 * ns], td);
         }
       }
     EXPECT_THROW(apply_operators_rows(*ops, Fd.view(), ns - 2, 5, linalg::MatrixView{}, linalg::MatrixView{}, work), InputError);
