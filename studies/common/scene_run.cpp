@@ -50,6 +50,10 @@ std::vector<std::vector<double>> load_rows(const std::string& path, double t_max
 
 }  // namespace
 
+RunProgress SceneRun::progress(double t_end) const {
+  return {finished, samples.empty() ? 0.0 : samples.back().at(0), t_end, steps, seconds_per_step(), stopped};
+}
+
 SceneRun run_scene(const std::string& text, const std::string& tag, int every, bool resumable, const Options& opt,
                    const SceneRunHooks& hooks, double max_seconds) {
   using clock = std::chrono::steady_clock;

@@ -41,6 +41,8 @@ struct SceneRun {
   std::string stopped;   ///< the NumericalError's message when the run ended early
   bool finished = false; ///< reached the scene's end (or stopped); false: the wall-time budget ran out
   double seconds_per_step() const { return steps_timed > 0 ? seconds / double(steps_timed) : NAN; }
+  /// How far the run is toward t_end, for record_run (the time is the last sample's).
+  RunProgress progress(double t_end) const;
 };
 
 /// Runs the scene `text` (its end time is the run's), sampling every `every` steps and at the end;

@@ -2,6 +2,7 @@
 
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/exec.hpp"
+#include "rbfib/core/units.hpp"
 
 #include <omp.h>
 
@@ -92,6 +93,20 @@ void write_results(const Options& opt, const Json& results) {
   out << "\n";
   if (!out) throw std::runtime_error("cannot write " + path.string());
   std::cout << "[" << opt.name << "] results written to " << path.string() << std::endl;
+}
+
+void record_run(Json& results, const std::string& id, const RunProgress& p) {
+  Json& r = results["runs"][id];
+  r["finished"] = p.finished;
+  r["progress"] = p.t_end > 0 ? std::min(1.0, p.t / p.t_end) : (p.finished ? 1.0 : 0.0);
+  r["simulated"] = to_text(p.t / units::ms) + " of " + to_text(p.t_end / units::ms) + " ms";
+  r["steps"] = p.steps;
+  r["seconds_per_step"] = std::isfinite(p.seconds_per_step) ? Json(p.seconds_per_step) : Json();
+  const double mean_dt = p.steps > 0 ? p.t / double(p.steps) : NAN;
+  r["mean_dt_ns"] = std::isfinite(mean_dt) ? Json(mean_dt / units::ns) : Json();
+  const double hours = p.finished ? 0.0 : (p.t_end - p.t) / mean_dt * p.seconds_per_step / 3600;
+  r["hours_to_go"] = std::isfinite(hours) ? Json(hours) : Json();
+  if (!p.stopped.empty()) r["stopped"] = p.stopped;
 }
 
 void log(const Options& opt, const std::string& message) { std::cout << "[" << opt.name << "] " << message << std::endl; }

@@ -5,6 +5,7 @@
 #include "common/json.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -49,6 +50,21 @@ class Sitting {
   double limit_;
   std::chrono::steady_clock::time_point start_;
 };
+
+/// How far one resumable run has come, recorded as results["runs"][id] (harness/FORMAT.md): a
+/// check that measures the run (`run: id` in the reference) is NOT RUN until it has finished.
+struct RunProgress {
+  bool finished = false;          ///< reached its end, or stopped by a numerical check (the stop is its result)
+  double t = 0;                   ///< simulated time reached (s)
+  double t_end = 0;               ///< the run's end (s)
+  long steps = 0;                 ///< steps from t = 0
+  double seconds_per_step = NAN;  ///< wall time per step measured in this sitting (s)
+  std::string stopped;            ///< the numerical stop's message, if one ended the run
+};
+
+/// results["runs"][id]: finished, progress (t / t_end), the simulated time as text, steps, s per
+/// step, the mean step (ns) and the hours to go here at that rate (0 when finished).
+void record_run(Json& results, const std::string& id, const RunProgress& p);
 
 /// Prints "[name] message" to stdout, flushed (progress on long runs).
 void log(const Options& opt, const std::string& message);
