@@ -95,6 +95,8 @@ def run_study(meta, args):
         # Recorded because it changes timings: on a loaded machine OMP_WAIT_POLICY=PASSIVE keeps a
         # spinning OpenMP team from waiting on a descheduled thread; on a quiet one the default is faster.
         info["omp_wait_policy"] = os.environ.get("OMP_WAIT_POLICY", "default")
+        # A fixed team (OMP_NUM_THREADS) or one sized to the cores other programs leave free.
+        info["omp_team"] = f"fixed at {os.environ['OMP_NUM_THREADS']}" if os.environ.get("OMP_NUM_THREADS") else "sized to the free cores"
         env = dict(os.environ)
         core = openblas_core(env)
         if core:

@@ -130,6 +130,7 @@ def render(meta, ref, results, outcome, out_dir, run_info):
     L.append(f"Ran on {prov.get('cpu', '?')} ({prov.get('threads', '?')} threads of {prov.get('hardware_threads', '?')}), "
              f"backend {prov.get('backend', '?')}, {prov.get('compiler', '?')}, commit {run_info.get('commit', '?')}, "
              f"{run_info.get('date', '?')}; OMP_WAIT_POLICY={run_info.get('omp_wait_policy', 'unset')}; "
+             f"OpenMP team {run_info.get('omp_team', 'not recorded')}; "
              f"OPENBLAS_CORETYPE={run_info.get('openblas_coretype', 'not recorded')}; "
              f"driver wall time {run_info.get('seconds', 0):.1f} s; driver sources {run_info.get('driver_hash', 'unknown')}, "
              f"reference {run_info.get('reference_hash', 'unknown')} (the index marks the report STALE when they change).")
