@@ -2,7 +2,6 @@
 
 #include "rbfib/cells/shapes.hpp"
 #include "rbfib/core/error.hpp"
-#include "rbfib/core/threads.hpp"
 #include "rbfib/linalg/blas.hpp"
 #include "rbfib/mechanics/ldsm.hpp"
 #include "rbfib/surface/geometry.hpp"
@@ -425,7 +424,6 @@ bool Run::advance(double stop_after_seconds) {
   while (!s.finished) {
     try {
       const int k = s.k;
-      share_cores();  // the team size for the cores other programs leave free (core/threads.hpp)
       s.step_once();
       if (k == s.m.steps) s.finished = true;
     } catch (const NumericalError& e) {

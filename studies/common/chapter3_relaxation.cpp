@@ -3,7 +3,6 @@
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/cells/shapes.hpp"
 #include "rbfib/core/error.hpp"
-#include "rbfib/core/threads.hpp"
 #include "rbfib/fluid/periodic_stokes.hpp"
 #include "rbfib/ib/interaction.hpp"
 #include "rbfib/linalg/blas.hpp"
@@ -360,7 +359,6 @@ Relaxation::~Relaxation() = default;
 bool Relaxation::advance() {
   Impl& s = *impl_;
   if (s.done) return false;
-  share_cores();  // the team size for the cores other programs leave free (core/threads.hpp)
   const auto t0 = clock_type::now();
   try {
     if (s.spec.method == Method::shvd)

@@ -7,6 +7,8 @@
 #include <thrust/for_each.h>
 #include <thrust/iterator/counting_iterator.h>
 
+#include "rbfib/core/threads.hpp"
+
 #include <cstddef>
 
 #if defined(__CUDACC__)
@@ -41,8 +43,12 @@ const T* ptr(const device_vector<T>& v) { return thrust::raw_pointer_cast(v.data
 
 /// Calls kernel(i) for i in [0, n) on the execution device, in parallel. One index may stand for
 /// much work (a grid row, a slab of a spreading colour), so n alone says nothing about the cost.
+/// On the CPU the OpenMP team is first fitted to the cores other programs leave free (threads.hpp).
 template <class Kernel>
 void for_each_index(index_t n, Kernel kernel) {
+#if !defined(RBFIB_BACKEND_CUDA)
+  share_cores();
+#endif
   thrust::for_each(thrust::counting_iterator<index_t>(0), thrust::counting_iterator<index_t>(n), kernel);
 }
 

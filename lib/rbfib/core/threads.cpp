@@ -1,6 +1,7 @@
 #include "rbfib/core/threads.hpp"
 
 #include <omp.h>
+#include <sched.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -17,16 +18,30 @@ namespace {
 
 using clock = std::chrono::steady_clock;
 
-/// Busy CPU time of all CPUs (s): /proc/stat's first line without idle and iowait; -1 where
-/// /proc/stat is not readable (then the team is left as it is).
+/// Busy time (s) of the CPUs this process may run on (its affinity mask), from /proc/stat's
+/// per-CPU lines without idle and iowait; -1 where /proc/stat is not readable (the team is then
+/// left as it is). A container shown the host's CPUs sees only its own in the mask.
 double machine_busy_seconds() {
+  cpu_set_t mask;
+  CPU_ZERO(&mask);
+  const bool masked = sched_getaffinity(0, sizeof mask, &mask) == 0;
   std::ifstream f("/proc/stat");
-  std::string cpu;
-  double user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
-  if (!(f >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq) || cpu != "cpu") return -1;
-  f >> steal;  // absent on old kernels; time the hypervisor gave to other machines
-  static const double tick = 100;  // USER_HZ, 100 on every Linux ABI
-  return (user + nice + system + irq + softirq + steal) / tick;
+  std::string line;
+  double ticks = 0;
+  bool any = false;
+  while (std::getline(f, line)) {
+    if (line.rfind("cpu", 0) != 0) break;  // the cpu lines come first
+    if (line.size() < 4 || line[3] == ' ') continue;  // the all-CPU line
+    std::istringstream in(line.substr(3));
+    int cpu = -1;
+    double user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
+    if (!(in >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq)) continue;
+    in >> steal;  // absent on old kernels; time the hypervisor gave to other machines
+    if (masked && (cpu < 0 || cpu >= CPU_SETSIZE || !CPU_ISSET(cpu, &mask))) continue;
+    ticks += user + nice + system + irq + softirq + steal;
+    any = true;
+  }
+  return any ? ticks / 100 : -1;  // USER_HZ = 100 on every Linux ABI
 }
 
 double own_cpu_seconds() {
@@ -52,6 +67,7 @@ Share& share() {
 }  // namespace
 
 void share_cores() {
+  if (omp_in_parallel()) return;  // only the thread that starts the parallel regions sizes them
   Share& s = share();
   if (s.fixed || s.max_team < 2 || s.last_busy < 0) return;
   const clock::time_point now = clock::now();

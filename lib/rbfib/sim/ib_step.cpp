@@ -1,7 +1,6 @@
 #include "rbfib/sim/ib_step.hpp"
 
 #include "rbfib/core/error.hpp"
-#include "rbfib/core/threads.hpp"
 #include "rbfib/linalg/blas.hpp"
 
 #include <thrust/copy.h>
@@ -104,7 +103,6 @@ void ImmersedBoundary::set_level(int level) {
 }
 
 IbStepReport ImmersedBoundary::step() {
-  share_cores();  // the team size for the cores other programs leave free (core/threads.hpp)
   const AdaptiveStep& a = options_.adaptive;
   int refused = 0;
   for (;;) {
