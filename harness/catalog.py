@@ -86,8 +86,11 @@ def reference(root, name):
             raise HarnessError(f"reference {path}: check '{cid}' has 'when', which is now 'run: <id>' "
                                "(the run it measures, from the results' runs)")
         run = c.get("run")
-        if run is not None and not (isinstance(run, str) or (isinstance(run, list) and run and all(isinstance(r, str) for r in run))):
-            raise HarnessError(f"reference {path}: check '{cid}' has run = {run!r}; expected a run id or a list of them")
+        ids = lambda r: isinstance(r, str) or (isinstance(r, list) and r and all(isinstance(x, str) for x in r))  # noqa: E731
+        if run is not None and not (ids(run) or (isinstance(run, dict) and run and set(run) <= {"quick", "full"}
+                                                 and all(ids(v) for v in run.values()))):
+            raise HarnessError(f"reference {path}: check '{cid}' has run = {run!r}; expected a run id, a list of them, "
+                               "or a mapping from scale (quick, full) to either")
         if not isinstance(c.get("speed", False), bool):
             raise HarnessError(f"reference {path}: check '{cid}' has speed = {c['speed']!r}; expected true or false")
         if cid in seen:

@@ -180,9 +180,12 @@ def _run_line(rid, run):
 
 
 def unfinished_runs(results, c):
-    """Why a check that measures resumable runs (`run: id` or a list of ids) cannot be judged yet:
+    """Why a check that measures resumable runs (`run: id`, a list of ids, or a mapping from scale to
+    either) cannot be judged yet:
     one line per run that is unrecorded or not finished; empty when every run has finished."""
     ids = c.get("run")
+    if isinstance(ids, dict):  # per scale: {quick: [...], full: [...]}
+        ids = ids.get(results.get("scale"))
     if ids is None:
         return []
     ids = ids if isinstance(ids, list) else [ids]

@@ -78,6 +78,9 @@ class Checks(unittest.TestCase):
         self.assertEqual(checks.evaluate({"checks": [c]}, done)[0]["status"], "FAIL")
         both = dict(c, run=["long", "other"])  # a check over several runs waits for all of them
         self.assertEqual(checks.evaluate({"checks": [both]}, done)[0]["status"], "NOT RUN")
+        per_scale = dict(c, run={"quick": "long", "full": ["long", "other"]})  # the runs differ by scale
+        self.assertEqual(checks.evaluate({"checks": [per_scale]}, dict(done, scale="quick"))[0]["status"], "FAIL")
+        self.assertEqual(checks.evaluate({"checks": [per_scale]}, dict(done, scale="full"))[0]["status"], "NOT RUN")
 
     def test_a_value_never_measured_never_passes(self):
         for v in (None, float("nan"), float("inf")):
