@@ -9,7 +9,10 @@
 //      sites by its own interpolant; L2 norm of eq. 5.2 with the weights omega_j / cos(phi_j) of
 //      the sphere (eq. 2.22, phi = r), L_inf of eq. 5.3;
 // and orders p from successive ratios by the seed's formula
-//   eps_r / eps_{r+1} = |((r+1)/r)^p - 1| / |((r+2)/(r+1))^{-p} - 1|, solved for p.
+//   eps_r / eps_{r+1} = |((r+1)/r)^p - 1| / |((r+2)/(r+1))^{-p} - 1|, solved for p
+// (exact for eps_r = |u_r - u_{r+1}| when u_r = u + C h_r^p, h_r = h_1 / r). The seed's printed
+// orders are this formula one index higher: its row r holds p from eps_{r-2} / eps_{r-1} solved
+// with r - 1 in place of r - 2; the columns order_*_seed_index repeat that, row by row.
 // Each grid's run is built from a scene (docs/scenes.md) kept beside the results as
 // DIR/scene_r<r>.yaml, which `build/bin/rbfib run` reruns.
 //
@@ -199,8 +202,10 @@ int main(int argc, char** argv) {
     // Written after every finished grid at full scale (a run stopped before r = 6 leaves the
     // tables of the grids it has, values.grids_completed saying how many), and at the end.
     auto write = [&](const std::vector<Run>& runs, Json results) {
-          Json tu = st::table({"r", "u_err_2", "order_2", "u_err_inf", "order_inf", "seconds"}, {"", "cm/s", "", "cm/s", "", "s"});
-      Json tx = st::table({"r", "X_err_2", "order_2", "X_err_inf", "order_inf", "seconds"}, {"", "um", "", "um", "", "s"});
+      Json tu = st::table({"r", "u_err_2", "order_2", "u_err_inf", "order_inf", "order_2_seed_index", "order_inf_seed_index", "seconds"},
+                          {"", "cm/s", "", "cm/s", "", "", "", "s"});
+      Json tx = st::table({"r", "X_err_2", "order_2", "X_err_inf", "order_inf", "order_2_seed_index", "order_inf_seed_index", "seconds"},
+                          {"", "um", "", "um", "", "", "", "s"});
       std::vector<double> eu2, euinf, ex2, exinf;
       for (std::size_t k = 0; k + 1 < runs.size(); ++k) {
         const host_vector<double> a = runs[k].u_centres, b = runs[k + 1].u_centres;
@@ -230,9 +235,14 @@ int main(int argc, char** argv) {
       for (const Run& run : runs) worst_volume = std::max(worst_volume, std::abs(run.volume_change));
       for (std::size_t k = 0; k < eu2.size(); ++k) {
         const int r = int(k) + 1;
+        // As the formula is written: eps_{r-1} / eps_r with r - 1.
         auto order = [&](const std::vector<double>& e) { return k >= 1 ? Json(seed_order(e[k - 1] / e[k], r - 1)) : Json(); };
-        tu["rows"].push(Json::Array{Json(r), Json(eu2[k]), order(eu2), Json(euinf[k]), order(euinf), Json(runs[k].seconds)});
-        tx["rows"].push(Json::Array{Json(r), Json(ex2[k]), order(ex2), Json(exinf[k]), order(exinf), Json(runs[k].seconds)});
+        // As the seed's tables print it: eps_{r-2} / eps_{r-1} with r - 1.
+        auto printed = [&](const std::vector<double>& e) { return k >= 2 ? Json(seed_order(e[k - 2] / e[k - 1], r - 1)) : Json(); };
+        tu["rows"].push(Json::Array{Json(r), Json(eu2[k]), order(eu2), Json(euinf[k]), order(euinf), printed(eu2), printed(euinf),
+                                    Json(runs[k].seconds)});
+        tx["rows"].push(Json::Array{Json(r), Json(ex2[k]), order(ex2), Json(exinf[k]), order(exinf), printed(ex2), printed(exinf),
+                                    Json(runs[k].seconds)});
         if (k >= 1) {
           V["last_order_u_2"] = seed_order(eu2[k - 1] / eu2[k], r - 1);
           V["last_order_u_inf"] = seed_order(euinf[k - 1] / euinf[k], r - 1);
@@ -250,6 +260,14 @@ int main(int argc, char** argv) {
       results["tables"]["table51_velocity"] = tu;
       results["tables"]["table52_positions"] = tx;
       results["values"]["grids_completed"] = double(runs.size());
+      // Each grid is one run (grid_r<r>): finished once its state at t_end is in hand.
+      for (int r = 1; r <= r_max; ++r) {
+        st::RunProgress p;
+        p.t_end = t_end;
+        for (const Run& run : runs)
+          if (run.r == r) p = {true, t_end, t_end, long(run.steps), run.seconds / run.steps, ""};
+        st::record_run(results, "grid_r" + to_text(r), p);
+      }
       st::write_results(opt, results);
     };
 

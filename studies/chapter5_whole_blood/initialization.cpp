@@ -207,6 +207,7 @@ PlateletPlacement place_platelets(const ReferenceSites& platelet, const Domain& 
   std::uniform_real_distribution<double> gap(spec.gap_min, spec.gap_max), spin(0, 2 * pi);
   PlateletPlacement P;
   std::vector<Vec3> chosen;  // the endothelium points taken
+  int attempts = 0;          // platelet points drawn for the platelet being placed
   for (int endothelium_draws = 0; int(P.platelets.size()) < count; ++endothelium_draws) {
     if (endothelium_draws > spec.max_draws)
       throw NumericalError("placing platelet " + std::to_string(P.platelets.size()) + ": no endothelium point found in " +
@@ -228,6 +229,7 @@ PlateletPlacement place_platelets(const ReferenceSites& platelet, const Domain& 
       if (++P.draws > spec.max_draws)
         throw NumericalError("placing platelet " + std::to_string(P.platelets.size()) + ": no placement in " +
                              std::to_string(spec.max_draws) + " draws (the space between the endothelium and the red cells is too small)");
+      ++attempts;
       const index_t i = site(rng);
       const Vec3 xp{platelet.X[std::size_t(i)], platelet.X[std::size_t(n + i)], platelet.X[std::size_t(2 * n + i)]};
       const Vec3 np{platelet.normals[std::size_t(i)], platelet.normals[std::size_t(n + i)], platelet.normals[std::size_t(2 * n + i)]};
@@ -248,9 +250,16 @@ PlateletPlacement place_platelets(const ReferenceSites& platelet, const Domain& 
       const std::vector<double> Y = cells::placed(platelet.X, n, p, "platelet");
       double above, below_top;
       clearances(Y, n, box, above, below_top);
-      if (!(above > 0 && below_top > 0)) continue;
-      if (distance_to_red_cells(Y, n, red, n_red, box, spec.red_cell_clearance) < spec.red_cell_clearance) continue;
-      P.platelets.push_back(p), P.gaps.push_back(g), chosen.push_back(e);
+      if (!(above > 0 && below_top > 0)) {
+        ++P.refused_surface;
+        continue;
+      }
+      if (distance_to_red_cells(Y, n, red, n_red, box, spec.red_cell_clearance) < spec.red_cell_clearance) {
+        ++P.refused_red_cells;
+        continue;
+      }
+      P.platelets.push_back(p), P.gaps.push_back(g), chosen.push_back(e), P.attempts.push_back(attempts);
+      attempts = 0;
       placed = true;
     }
   }

@@ -84,6 +84,9 @@ struct PlateletPlacement {
   std::vector<cells::Placement> platelets;
   std::vector<double> gaps;  ///< the drawn distances (cm)
   int draws = 0;             ///< platelet points drawn in all
+  std::vector<int> attempts; ///< per platelet placed: the platelet points drawn for it (the accepted one included)
+  int refused_red_cells = 0; ///< draws refused for passing within the clearance of a red cell (the seed's test)
+  int refused_surface = 0;   ///< draws refused for a site below the endothelium's surface or outside the box
 };
 /// Places `count` platelets over the endothelium points `E` (3m, X[d m + k]) against the red
 /// cells' data sites `red` (n_r x 3N column-major, cells::Batch::positions_host's layout; may be

@@ -17,10 +17,15 @@
 // and the effective shear rate in the platelet layer (y = 1-4 um); per platelet its distance to the
 // endothelium with the intervals of unicycling (short axis within 45 deg of the vorticity) and 2h
 // (Fig. 5.5), its smallest surface speed with the intervals where its aspect ratio changes by more
-// than 4% (Fig. 5.6); the smallest distances between cells; volumes; the hematocrit.
+// than 4% (Fig. 5.6); per red cell the turning of a tracked data site about its centre in the shear
+// plane less the turning of its short axis (the tank-treading period of Sec. 5.2.2); the smallest
+// distances between cells; volumes; the hematocrit; the platelet placement's attempts.
+// Each init run and each run from a starting state is recorded as a run (results' runs): init_<wall>,
+// <wall>_<k>, bumpy_no_red_cells_<k>.
 //   full:  the seed's sizes (h = 0.2 um, red cells 2,500 / 10,000 sites, platelets 900 / 900,
-//          16,000 endothelium points, dt = 50 ns), 4 starting times, 40 ms per run, continued from
-//          checkpoints; RBFIB_SITTING_SECONDS limits one sitting's wall time;
+//          16,000 endothelium points, dt = 50 ns), 4 starting times, 40 ms per run over the bumpy
+//          wall and 60 ms over the flat one (the seed's flat-wall unicycling 'lasted over 40 ms'),
+//          continued from checkpoints; RBFIB_SITTING_SECONDS limits one sitting's wall time;
 //   quick: h = 0.4 um, red cells 400 / 1,600, platelets 400 / 400, 4,096 endothelium points (the
 //          seed's spacing in units of h), dt = 100 ns (the tethers' explicit limit is about
 //          2 mu / (k n_A h), n_A points per area: 128 ns here, 64 ns at the seed's h); the
@@ -38,6 +43,8 @@
 #include "rbfib/scene/checkpoint.hpp"
 #include "rbfib/scene/snapshot.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -72,7 +79,7 @@ struct Setup {
   double h, dt;
   int rbc_nd, rbc_ns, plt_n;
   long endothelium;
-  double turn, settle, mean_gap, window;
+  double turn, settle, mean_gap, window, flat_window;  // s; the runs' length over the bumpy and the flat wall
   int starts;
   std::vector<Wall> walls;
   int every;  // steps between samples
@@ -171,12 +178,18 @@ struct PlateletSample {
   /// its centre (cm): negative when a red cell has come between it and the wall; +inf without.
   double headroom = INFINITY;
 };
+constexpr int red_cell_count = 8;
 struct RunSample {
   double t = 0;
   PlateletSample p[2];
   double red_gap = NAN, platelet_red_gap = NAN;   ///< closest red cells; closest platelet-red cell (cm)
   double red_volume_min = NAN, red_volume_max = NAN;  ///< um^3
+  /// Per red cell, in the shear plane (flow_dir, e2): the angle of its tracked data site about its
+  /// centre and the angle of its short axis (rad, atan2 of the e2 and flow_dir components); NaN without red cells.
+  double material[red_cell_count], short_axis[red_cell_count];
   std::vector<double> u;                         ///< the velocity profile (cm/s)
+
+  RunSample() { std::fill_n(material, red_cell_count, NAN), std::fill_n(short_axis, red_cell_count, NAN); }
 
   std::vector<double> row() const {
     std::vector<double> r{t};
@@ -187,6 +200,8 @@ struct RunSample {
       r.insert(r.end(), {q.to_endothelium, q.clearance, q.min_speed, q.volume, q.headroom});
     }
     r.insert(r.end(), {red_gap, platelet_red_gap, red_volume_min, red_volume_max});
+    r.insert(r.end(), material, material + red_cell_count);
+    r.insert(r.end(), short_axis, short_axis + red_cell_count);
     r.insert(r.end(), u.begin(), u.end());
     return r;
   }
@@ -200,12 +215,34 @@ struct RunSample {
       q.to_endothelium = r.at(k++), q.clearance = r.at(k++), q.min_speed = r.at(k++), q.volume = r.at(k++), q.headroom = r.at(k++);
     }
     s.red_gap = r.at(k++), s.platelet_red_gap = r.at(k++), s.red_volume_min = r.at(k++), s.red_volume_max = r.at(k++);
+    for (double& x : s.material) x = r.at(k++);
+    for (double& x : s.short_axis) x = r.at(k++);
     s.u.assign(r.begin() + long(k), r.end());
     return s;
   }
 };
 
-RunSample sample_run(const sim::ImmersedBoundary& ib, bool red, const Domain& box) {
+/// The angle of a vector in the shear plane of the final flow: counterclockwise from flow_dir toward e2 (rad).
+double shear_plane_angle(const Vec3& v) { return std::atan2(v[1], v[0] * flow_dir[0] + v[2] * flow_dir[2]); }
+
+/// Per red cell, the data site tracked for its tank-treading: the one farthest from the cell's
+/// centre in the shear plane (its rim in that plane) in the sites X (n x 3N, a batch's layout).
+std::vector<index_t> tracked_sites(const std::vector<double>& X, index_t n, index_t N) {
+  std::vector<index_t> site(std::size_t(N), 0);
+  for (index_t c = 0; c < N; ++c) {
+    const st::CellShape shape = st::cell_shape(X, n, N, c);
+    double best = -1;
+    for (index_t i = 0; i < n; ++i) {
+      Vec3 d;
+      for (int k = 0; k < 3; ++k) d[std::size_t(k)] = X[std::size_t((k * N + c) * n + i)] - shape.center[std::size_t(k)];
+      const double a = d[0] * flow_dir[0] + d[2] * flow_dir[2], q = a * a + d[1] * d[1];
+      if (q > best) best = q, site[std::size_t(c)] = i;
+    }
+  }
+  return site;
+}
+
+RunSample sample_run(const sim::ImmersedBoundary& ib, bool red, const Domain& box, const std::vector<index_t>& tracked) {
   RunSample out;
   out.t = ib.time();
   const index_t pb = red ? 1 : 0;
@@ -244,6 +281,14 @@ RunSample sample_run(const sim::ImmersedBoundary& ib, bool red, const Domain& bo
     }
   }
   if (red) {
+    for (index_t c = 0; c < Nr && c < red_cell_count; ++c) {
+      const st::CellShape shape = st::cell_shape(XR, nr, Nr, c);
+      const index_t i = tracked.at(std::size_t(c));
+      Vec3 d;
+      for (int k = 0; k < 3; ++k) d[std::size_t(k)] = XR[std::size_t((k * Nr + c) * nr + i)] - shape.center[std::size_t(k)];
+      out.material[c] = shear_plane_angle(d);
+      out.short_axis[c] = shear_plane_angle(shape.axes[0]);
+    }
     out.red_gap = closest_pair(XR, nr, Nr, box);
     const auto& vol = ib.diagnostics(0).volume;
     if (!vol.empty()) {
@@ -281,6 +326,27 @@ Couette couette_fit(const std::vector<double>& y, const std::vector<double>& u, 
   return c;
 }
 
+/// The longest stretch of consecutive samples with flag set: the time from its first to its last sample (s).
+double longest_interval(const std::vector<double>& t, const std::vector<bool>& flag) {
+  double longest = 0;
+  std::size_t first = 0;
+  bool in = false;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (flag[i] && !in) first = i, in = true;
+    if (in && (!flag[i] || i + 1 == t.size())) {
+      const std::size_t last = flag[i] ? i : i - 1;
+      longest = std::max(longest, t[last] - t[first]);
+      in = false;
+    }
+  }
+  return longest;
+}
+
+/// A value measured over a set of runs: written when every one of them has finished, NaN before.
+struct Measured {
+  double value;
+  bool runs_finished;
+};
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -288,8 +354,9 @@ int main(int argc, char** argv) {
     const st::Options opt = st::parse_command_line(argc, argv, "chapter5_whole_blood",
                                                    "Sec. 5.2: whole blood over a flat and a bumpy endothelium (Figs. 5.4-5.6)");
     const bool full = opt.scale == st::Scale::full;
-    const Setup s = full ? Setup{0.2 * um, 50 * units::ns, 2500, 10000, 900, 16000, 7.2 * ms, 17 * ms, 3 * ms, 40 * ms, 4, {flat, bumpy}, 400}
-                         : Setup{0.4 * um, 100 * units::ns, 400, 1600, 400, 4096, 20 * us, 30 * us, 10 * us, 80 * us, 1, {bumpy}, 10};
+    const Setup s = full ? Setup{0.2 * um, 50 * units::ns, 2500, 10000, 900, 16000, 7.2 * ms, 17 * ms, 3 * ms, 40 * ms, 60 * ms, 4, {flat, bumpy}, 400}
+                         : Setup{0.4 * um, 100 * units::ns, 400, 1600, 400, 4096, 20 * us, 30 * us, 10 * us, 80 * us, 80 * us, 1, {bumpy}, 10};
+    auto window = [&](const Wall& w) { return w.bump > 0 ? s.window : s.flat_window; };
     const st::Sitting sitting;  // full scale: this sitting's wall time
     auto remaining = [&] { return sitting.remaining(); };
 
@@ -303,7 +370,8 @@ int main(int argc, char** argv) {
     P["platelets"] = "2 at " + to_text(s.plt_n) + " / " + to_text(s.plt_n) + " sites (neo-Hookean, bending about the reference curvature)";
     P["endothelium"] = to_text(s.endothelium) + " points on the toroidal spiral (Appendix B), flat y = 1 um or bumpy y = 0.75 um + 1 um cos^2(theta - phi) sin^2(phi/2) (eq. 5.5); k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm";
     P["procedure"] = "wall turning over " + to_text(s.turn / us) + " us, settling " + to_text(s.settle / us) + " us, " + to_text(s.starts) +
-                     " starting time(s) with exponential gaps of mean " + to_text(s.mean_gap / us) + " us, runs of " + to_text(s.window / us) + " us";
+                     " starting time(s) with exponential gaps of mean " + to_text(s.mean_gap / us) + " us, runs of " + to_text(s.window / us) +
+                     " us" + (full ? " over the bumpy wall and " + to_text(s.flat_window / us) + " us over the flat one" : "");
     P["seed"] = double(seed);
     P["kernel_integrator_coupling"] = "B3 kernel, backward-forward Euler, the seed's coupling (a)-(g)";
 
@@ -315,10 +383,14 @@ int main(int argc, char** argv) {
                                  {"", "ms", "um", "um", "", "mm/s", ""});
     Json runs_t = st::table({"run", "t_start_ms", "t_end_ms", "steps", "seconds_per_step", "shear_platelet_layer_1_s", "couette_deviation_start",
                              "couette_deviation", "no_slip_height_um", "closest_red_cells_over_h", "closest_platelet_red_over_h",
-                             "platelet_headroom_um", "unicycling_fraction", "volume_change"},
-                            {"", "ms", "ms", "", "s", "1/s", "", "", "um", "", "", "um", "", ""});
-    Json layout_t = st::table({"wall", "moved", "draws", "closest_um", "platelet_draws", "gap1_um", "gap2_um", "starting_times_ms"},
-                              {"", "", "", "um", "", "um", "um", "ms"});
+                             "platelet_headroom_um", "unicycling_fraction", "longest_unicycling_ms", "max_distance_um", "max_aspect_change",
+                             "tank_treading_period_ms", "volume_change"},
+                            {"", "ms", "ms", "", "s", "1/s", "", "", "um", "", "", "um", "", "ms", "um", "", "ms", ""});
+    Json treading_t = st::table({"run", "cell", "material_turn_deg", "short_axis_turn_deg", "relative_turn_deg", "period_ms"},
+                                {"", "", "deg", "deg", "deg", "ms"});
+    Json layout_t = st::table({"wall", "moved", "draws", "closest_um", "platelet_draws", "attempts_platelet_1", "attempts_platelet_2",
+                               "refused_red_cells", "refused_surface_or_box", "gap1_um", "gap2_um", "starting_times_ms"},
+                              {"", "", "", "um", "", "", "", "", "", "um", "um", "ms"});
     Json snapshot_t = st::table({"cell", "z_um", "y_um"}, {"", "um", "um"});
     Json cost = st::table({"run", "h_um", "dt_ns", "steps_done", "steps_needed", "seconds_per_step", "hours_to_solution"},
                           {"", "um", "ns", "", "", "s", "h"});
@@ -330,10 +402,16 @@ int main(int argc, char** argv) {
       cost["rows"].push(Json::Array{Json(run), Json(s.h / um), Json(s.dt / units::ns), Json(done), Json(needed), Json(seconds_per_step), Json(hours)});
     };
     double v_ref = NAN;  // the red cell's reference volume (um^3), from the init run's cell type
-    bool all_done = true;
+    // Which runs have finished, by kind: the values measured over a kind are written once all its runs have.
+    bool inits_done = true, red_runs_done = true, free_runs_done = true, flat_runs_done = true;
     std::map<std::string, double> shear;  // per run: the platelet layer's shear rate
     double worst_volume = 0, worst_couette = 0, closest_red = INFINITY, closest_platelet_red = INFINITY, min_platelet_endothelium = INFINITY;
-    double min_headroom = INFINITY, no_slip_height = NAN, min_clearance = INFINITY;
+    double min_headroom = INFINITY, no_slip_sum = 0, min_clearance = INFINITY;
+    double max_distance_red = 0, max_aspect = 0, longest_unicycling_flat = 0;
+    int free_runs = 0;
+    std::vector<double> frequencies;      // tank-treading turns per second, per red cell and run with red cells (1/s)
+    std::vector<double> attempts;         // platelet points drawn per platelet placed
+    int refused_red = 0, refused_surface = 0;
     const double v_plt_ref = 4.0 / 3 * pi * 1.55 * 1.55 * 0.5;  // the platelet ellipsoid (um^3)
 
     for (std::size_t wi = 0; wi < s.walls.size(); ++wi) {
@@ -353,6 +431,12 @@ int main(int argc, char** argv) {
       }
       st::log(opt, w.name + ": red cells moved " + to_text(layout.moved) + " of 8 in " + to_text(layout.draws) + " draws, closest " +
                        um_text(layout.closest) + "; starting times (ms): " + start_list);
+      const double run_window = window(w);
+      auto run_tags = [&](std::size_t k) {
+        std::vector<std::string> tags{w.name + "_" + to_text(k)};
+        if (w.bump > 0) tags.push_back(w.name + "_no_red_cells_" + to_text(k));  // the seed removes the red cells over the bumpy wall only
+        return tags;
+      };
 
       // ---- init: endothelium and red cells, the wall turning ------------------------------------
       const std::string init_text = scene_text(s, w, layout.red_cells, {}, starts.back(), "init");
@@ -384,17 +468,21 @@ int main(int argc, char** argv) {
       ih.at_start = [&](const sim::ImmersedBoundary& ib) { v_ref = ib.batch(0).type().reference_volume() / std::pow(um, 3); };
       // A sitting's budget is shared by the walls' init runs still to come.
       const st::SceneRun init = st::run_scene(init_text, "init_" + w.name, s.every, full, opt, ih, remaining() / double(s.walls.size() - wi));
+      st::record_run(results, "init_" + w.name, init.progress(starts.back()));
       const long init_needed = std::lround(starts.back() / s.dt);
       add_cost("init " + w.name, double(init.steps), double(init_needed), init.seconds_per_step());
       if (!init.stopped.empty()) throw NumericalError("the init run (" + w.name + ") stopped: " + init.stopped);
       for (const auto& r : init.samples) closest_red = std::min(closest_red, r[2] / s.h);
       if (!init.finished) {
-        all_done = false;
+        inits_done = red_runs_done = false;
+        if (w.bump > 0) free_runs_done = false;
+        if (w.bump == 0) flat_runs_done = false;
         // The runs from its starting states are still to come: their steps at the init's rate
         // (they carry two platelets more, a few percent of the step).
         for (std::size_t k = 0; k < starts.size(); ++k)
-          for (int copies = 0; copies < (w.bump > 0 ? 2 : 1); ++copies) {
-            add_cost(w.name + (copies ? "_no_red_cells_" : "_") + to_text(k) + " (to come)", 0, std::round(s.window / s.dt), init.seconds_per_step());
+          for (const std::string& tag : run_tags(k)) {
+            add_cost(tag + " (to come)", 0, std::round(run_window / s.dt), init.seconds_per_step());
+            st::record_run(results, tag, st::RunProgress{false, 0, run_window, 0, init.seconds_per_step(), ""});
           }
         st::log(opt, w.name + ": init run at t = " + to_text(double(init.steps) * s.dt / ms) + " ms of " + to_text(starts.back() / ms) +
                          " ms; continued at the next start");
@@ -406,27 +494,31 @@ int main(int argc, char** argv) {
         const scene::Checkpoint start = scene::read_checkpoint(start_file + to_text(k) + ".h5");
         const index_t nr = rbc.n;
         std::vector<double> red = host(start.state.batches.at(0));
-        red.resize(std::size_t(3 * 8 * nr));  // X, the first 3N columns of the n x 6N state
+        red.resize(std::size_t(3 * red_cell_count * nr));  // X, the first 3N columns of the n x 6N state
+        const std::vector<index_t> tracked = tracked_sites(red, nr, red_cell_count);
         std::mt19937_64 prng(seed + 100 * (wi + 1) + k);
         PlateletSpec ps;
         ps.min_separation = 3.1 * um + 4 * s.h;
         const std::vector<double> E = host(start.state.points.at(0));
         const PlateletPlacement placed = place_platelets(plt, box, E, red, nr, 2, ps, prng);
+        for (int a : placed.attempts) attempts.push_back(double(a));
+        refused_red += placed.refused_red_cells, refused_surface += placed.refused_surface;
         layout_t["rows"].push(Json::Array{Json(w.name + " start " + to_text(k)), Json(double(layout.moved)), Json(double(layout.draws)),
-                                          Json(layout.closest / um), Json(double(placed.draws)), Json(placed.gaps[0] / um),
-                                          Json(placed.gaps[1] / um), Json(start_list)});
+                                          Json(layout.closest / um), Json(double(placed.draws)), Json(double(placed.attempts.at(0))),
+                                          Json(double(placed.attempts.at(1))), Json(double(placed.refused_red_cells)),
+                                          Json(double(placed.refused_surface)), Json(placed.gaps[0] / um), Json(placed.gaps[1] / um), Json(start_list)});
         for (bool with_red : {true, false}) {
           if (!with_red && w.bump == 0) continue;  // the seed removes the red cells over the bumpy wall only
           const std::string tag = w.name + (with_red ? "" : "_no_red_cells") + "_" + to_text(k);
-          const double t_end = starts[k] + s.window;
+          const double t_end = starts[k] + run_window;
           const std::string text =
               scene_text(s, w, with_red ? layout.red_cells : std::vector<cells::Placement>{}, placed.platelets, t_end, "a run from a starting state");
           st::SceneRunHooks h;
           h.prepare = [&](sim::ImmersedBoundary& ib) { start_from(ib, start, with_red); };
-          h.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample_run(ib, with_red, box).row(); };
+          h.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample_run(ib, with_red, box, tracked).row(); };
           // Snapshots for ParaView (the first starting state's runs): at the start, every tenth of the run, at the end.
           std::unique_ptr<scene::SnapshotWriter> writer;
-          const long snapshot_every = std::max(1L, std::lround(s.window / s.dt) / 10);
+          const long snapshot_every = std::max(1L, std::lround(run_window / s.dt) / 10);
           if (k == 0)
             h.after_step = [&](const sim::ImmersedBoundary& ib) {
               if (!writer) {
@@ -436,11 +528,16 @@ int main(int argc, char** argv) {
               if ((ib.step_count() - start.state.steps) % snapshot_every == 0) writer->write(ib);
             };
           const st::SceneRun run = st::run_scene(text, tag, s.every, full, opt, h, remaining());
-          const long needed = std::lround(s.window / s.dt);
+          const long needed = std::lround(run_window / s.dt);
           const long done = run.steps - start.state.steps;
+          // The run's own span: from its starting time, steps from its start.
+          st::RunProgress progress = run.progress(t_end);
+          progress.t -= starts[k], progress.t_end = run_window, progress.steps = done;
+          st::record_run(results, tag, progress);
           add_cost(tag, double(done), double(needed), run.seconds_per_step());
           if (!run.finished) {
-            all_done = false;
+            (with_red ? red_runs_done : free_runs_done) = false;
+            if (with_red && w.bump == 0) flat_runs_done = false;
             continue;
           }
           if (!run.stopped.empty()) throw NumericalError("run " + tag + " stopped: " + run.stopped);
@@ -461,25 +558,36 @@ int main(int argc, char** argv) {
           const Couette fit = couette_fit(y, u, 3 * um, 11.5 * um), fit0 = couette_fit(y, rows.front().u, 3 * um, 11.5 * um);
           if (!with_red) {
             worst_couette = std::max(worst_couette, fit.deviation);
-            no_slip_height = fit.no_slip_height;
+            no_slip_sum += fit.no_slip_height, ++free_runs;
           }
           // Platelets.
           double unicycling = 0, headroom = INFINITY, volume = 0, red_min = INFINITY, plt_red = INFINITY;
+          double longest_uni = 0, max_dist = 0, max_asp = 0;
+          std::vector<double> times;
+          for (const RunSample& r : rows) times.push_back(r.t);
           for (int c = 0; c < 2; ++c) {
             auto aspect = [](const PlateletSample& q) { return q.extent[0] / std::max(q.extent[1], q.extent[2]); };
             const double aspect0 = aspect(rows.front().p[c]);
+            std::vector<bool> uni_flags;
             for (const RunSample& r : rows) {
               const PlateletSample& q = r.p[c];
               const bool uni = st::axis_angle(q.axis, vorticity_dir) < pi / 4;
+              const double change = aspect(q) / aspect0 - 1;
               platelets_t["rows"].push(Json::Array{Json(tag + " platelet " + to_text(c + 1)), Json(r.t / ms), Json(q.to_endothelium / um),
-                                                   Json(2 * s.h / um), Json(uni ? 1.0 : 0.0), Json(q.min_speed * 10), Json(aspect(q) / aspect0 - 1)});
+                                                   Json(2 * s.h / um), Json(uni ? 1.0 : 0.0), Json(q.min_speed * 10), Json(change)});
+              uni_flags.push_back(uni);
               unicycling += (uni ? 1.0 : 0.0) / double(2 * rows.size());
               min_platelet_endothelium = std::min(min_platelet_endothelium, q.to_endothelium / um);
               min_clearance = std::min(min_clearance, q.clearance / um);
               headroom = std::min(headroom, q.headroom);
+              max_dist = std::max(max_dist, q.to_endothelium / um);
+              max_asp = std::max(max_asp, std::abs(change));
               if (q.volume > 0) volume = std::max(volume, std::abs(q.volume / v_plt_ref - 1));
             }
+            longest_uni = std::max(longest_uni, longest_interval(times, uni_flags));
           }
+          max_aspect = std::max(max_aspect, max_asp);
+          double period_median = NAN;
           if (with_red) {
             for (const RunSample& r : rows) {
               red_min = std::min(red_min, r.red_gap / s.h), plt_red = std::min(plt_red, r.platelet_red_gap / s.h);
@@ -487,11 +595,32 @@ int main(int argc, char** argv) {
             }
             closest_red = std::min(closest_red, red_min), closest_platelet_red = std::min(closest_platelet_red, plt_red);
             min_headroom = std::min(min_headroom, headroom);
+            max_distance_red = std::max(max_distance_red, max_dist);
+            if (w.bump == 0) longest_unicycling_flat = std::max(longest_unicycling_flat, longest_uni);
+            // Tank-treading: the tracked site's mean turning about the centre, less the short axis's,
+            // over the whole run, in turns per second; one period is a relative turn of 2 pi in the
+            // flow's sense. The shear turns shear_plane_angle negatively (u = gdot y flow_dir:
+            // d(angle)/dt = -gdot sin^2(angle)), so a membrane that lags its body, or none that turns,
+            // tank-treads at 0 per second (an infinite period).
+            std::vector<double> run_frequencies;
+            for (int c = 0; c < red_cell_count; ++c) {
+              std::vector<double> m, a;
+              for (const RunSample& r : rows) m.push_back(r.material[c]), a.push_back(r.short_axis[c]);
+              m = st::unwrap(m, 2 * pi), a = st::unwrap(a, pi);
+              const double dm = m.back() - m.front(), da = a.back() - a.front(), span = times.back() - times.front();
+              const double frequency = std::max(0.0, da - dm) / (2 * pi * span), period = 1 / frequency;
+              run_frequencies.push_back(frequency);
+              frequencies.push_back(frequency);
+              treading_t["rows"].push(Json::Array{Json(tag), Json(double(c + 1)), Json(dm * 180 / pi), Json(da * 180 / pi),
+                                                  Json((dm - da) * 180 / pi), Json(period / ms)});
+            }
+            period_median = 1 / st::median(run_frequencies);
           }
           worst_volume = std::max(worst_volume, volume);
           runs_t["rows"].push(Json::Array{Json(tag), Json(starts[k] / ms), Json(t_end / ms), Json(double(done)), Json(run.seconds_per_step()),
                                           Json(gdot), Json(fit0.deviation), Json(fit.deviation), Json(fit.no_slip_height / um), Json(red_min),
-                                          Json(plt_red), Json(headroom / um), Json(unicycling), Json(volume)});
+                                          Json(plt_red), Json(headroom / um), Json(unicycling), Json(longest_uni / ms), Json(max_dist),
+                                          Json(max_asp), Json(period_median / ms), Json(volume)});
           st::log(opt, tag + ": shear in the platelet layer " + to_text(gdot) + " 1/s (start of the run: " +
                            to_text(profile_slope(y, rows.front().u, 1 * um, 4 * um)) + "), deviation from Couette " + to_text(fit0.deviation) + " -> " +
                            to_text(fit.deviation) + ", no-slip height " + to_text(fit.no_slip_height / um) + " um" +
@@ -519,32 +648,61 @@ int main(int argc, char** argv) {
 
     V["hours_to_solution"] = hours_left;
     cost["rows"].push(Json::Array{Json("all"), Json(s.h / um), Json(s.dt / units::ns), Json(NAN), Json(NAN), Json(NAN), Json(hours_left)});
-    // ---- summary values -------------------------------------------------------------------------
-    V["completed"] = all_done ? 1.0 : 0.0;
+    // ---- summary values: each written once every run it is measured over has finished (NaN before) ----
+    const bool all_runs_done = red_runs_done && free_runs_done;
+    auto put = [&](const std::string& name, const Measured& m) { V[name] = m.runs_finished ? m.value : NAN; };
+    put("closest_red_cells_over_h", {closest_red, inits_done && red_runs_done});
+    put("closest_platelet_red_over_h", {closest_platelet_red, red_runs_done});
+    put("min_platelet_endothelium_um", {min_platelet_endothelium, all_runs_done});
+    put("min_platelet_clearance_um", {min_clearance, all_runs_done});
+    put("platelet_headroom_um", {min_headroom / um, red_runs_done});
+    put("no_slip_height_without_red_cells_um", {no_slip_sum / std::max(free_runs, 1) / um, free_runs_done && free_runs > 0});
+    put("couette_deviation_without_red_cells", {worst_couette, free_runs_done && free_runs > 0});
+    put("volume_change", {worst_volume, all_runs_done});
+    put("max_platelet_distance_um", {max_distance_red, red_runs_done});
+    put("max_aspect_change", {max_aspect, all_runs_done});
+    put("rbc_tank_treading_frequency_1_s", {st::median(frequencies), red_runs_done});
+    put("rbc_tank_treading_period_ms", {1 / st::median(frequencies) / ms, red_runs_done});  // infinite (null) for none
+    const bool has_flat = std::any_of(s.walls.begin(), s.walls.end(), [](const Wall& w) { return w.bump == 0; });
+    put("longest_unicycling_ms_flat", {longest_unicycling_flat / ms, has_flat && flat_runs_done});
+    // Shear rates in the platelet layer: the mean over the starting times of each kind of run.
+    auto mean_shear = [&](const std::string& prefix) {
+      double sum = 0;
+      int n = 0;
+      for (const auto& [tag, g] : shear)
+        if (tag.rfind(prefix, 0) == 0 && std::isdigit(static_cast<unsigned char>(tag[prefix.size()]))) sum += g, ++n;
+      return n > 0 ? sum / n : NAN;
+    };
+    const double with = mean_shear("bumpy_"), without = mean_shear("bumpy_no_red_cells_");
+    put("shear_platelet_layer_bumpy", {with, red_runs_done});
+    put("shear_platelet_layer_bumpy_no_red_cells", {without, free_runs_done});
+    put("shear_ratio_with_over_without_red_cells", {with / without, red_runs_done && free_runs_done});
+    if (has_flat) put("shear_platelet_layer_flat", {mean_shear("flat_"), flat_runs_done});
+    // The platelet placement (Sec. 5.2.1): attempts per platelet over every starting state.
+    put("platelet_attempts_median", {st::median(attempts), inits_done});
+    double attempts_mean = 0;
+    for (double a : attempts) attempts_mean += a / double(attempts.size());
+    put("platelet_attempts_mean", {attempts.empty() ? NAN : attempts_mean, inits_done});
+    put("platelet_draws_refused_red_cells", {double(refused_red), inits_done});
+    put("platelet_draws_refused_surface_or_box", {double(refused_surface), inits_done});
+    // The hematocrit (conventions: hematocrit): 8 red cells of the reference volume over the fluid above
+    // the endothelium (mean height 1 um for both shapes), and the other readings for comparison.
+    const double area = 16 * 16, above = 12 - 1.0;  // um^2, um
+    const double red_volume = red_cell_count * v_ref;  // um^3
     V["red_cell_volume_um3"] = v_ref;
-    V["hematocrit_above_endothelium"] = 8 * v_ref / (16 * 12 * 16 - 16 * 16 * 1.0);
-    V["hematocrit_above_3um"] = 8 * v_ref / (16 * 16 * 9.0);
-    V["hematocrit_above_3um_below_10um"] = 8 * v_ref / (16 * 16 * 7.0);
-    if (all_done) {
-      V["closest_red_cells_over_h"] = closest_red;
-      V["closest_platelet_red_over_h"] = closest_platelet_red;
-      V["min_platelet_endothelium_um"] = min_platelet_endothelium;
-      V["min_platelet_clearance_um"] = min_clearance;
-      V["platelet_headroom_um"] = min_headroom / um;
-      V["no_slip_height_without_red_cells_um"] = no_slip_height / um;
-      V["couette_deviation_without_red_cells"] = worst_couette;
-      V["volume_change"] = worst_volume;
-      const auto with = shear.find("bumpy_0"), without = shear.find("bumpy_no_red_cells_0");
-      if (with != shear.end() && without != shear.end()) {
-        V["shear_platelet_layer_bumpy"] = with->second;
-        V["shear_platelet_layer_bumpy_no_red_cells"] = without->second;
-        V["shear_ratio_with_over_without_red_cells"] = with->second / without->second;
-      }
-      if (shear.count("flat_0")) V["shear_platelet_layer_flat"] = shear["flat_0"];
-    }
+    V["hematocrit_above_endothelium"] = red_volume / (area * above);
+    V["hematocrit_above_endothelium_without_top_1um"] = red_volume / (area * (above - 1));
+    V["hematocrit_above_endothelium_without_top_2um"] = red_volume / (area * (above - 2));
+    V["hematocrit_exclusion_ratio_1um"] = above / (above - 1);
+    V["hematocrit_exclusion_ratio_2um"] = above / (above - 2);
+    V["hematocrit_whole_box"] = red_volume / (area * 12);
+    V["hematocrit_above_3um"] = red_volume / (area * 9.0);
+    V["hematocrit_above_3um_below_10um"] = red_volume / (area * 7.0);
+    V["red_volume_for_34_percent_um3"] = 0.34 * area * above;
     results["tables"]["profiles"] = profiles;
     results["tables"]["platelets"] = platelets_t;
     results["tables"]["runs"] = runs_t;
+    results["tables"]["tank_treading"] = treading_t;
     results["tables"]["procedure"] = layout_t;
     results["tables"]["snapshot"] = snapshot_t;
     results["tables"]["cost"] = cost;
