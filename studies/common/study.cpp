@@ -99,7 +99,9 @@ void record_run(Json& results, const std::string& id, const RunProgress& p) {
   Json& r = results["runs"][id];
   r["finished"] = p.finished;
   r["progress"] = p.t_end > 0 ? std::min(1.0, p.t / p.t_end) : (p.finished ? 1.0 : 0.0);
-  r["simulated"] = to_text(p.t / units::ms) + " of " + to_text(p.t_end / units::ms) + " ms";
+  char simulated[64];
+  std::snprintf(simulated, sizeof simulated, "%.4g of %.4g ms", p.t / units::ms, p.t_end / units::ms);
+  r["simulated"] = simulated;
   r["steps"] = p.steps;
   r["seconds_per_step"] = std::isfinite(p.seconds_per_step) ? Json(p.seconds_per_step) : Json();
   const double mean_dt = p.steps > 0 ? p.t / double(p.steps) : NAN;
