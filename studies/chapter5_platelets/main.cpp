@@ -16,7 +16,10 @@
 // shear positive; edge-on, the edge pointing at the wall, within 45 degrees of 90), the centre's
 // height; the endothelium's largest displacement from its anchors; volumes. Rates beside Jeffery's
 // rigid spheroid in unbounded shear (a wall slows a particle's rotation); at full scale the wobble
-// and tumble frequencies and the time spent edge-on beside the seed's 10/s, 30/s and 3-4 ms.
+// frequency (from the crossings of the tilt's mean after 5 ms), the tumble frequency in full orbits
+// per second (1 / (2 x the mean interval between flips): a flip is half of Jeffery's orbit) and the
+// mean contiguous edge-on interval, beside the seed's 10/s, 30/s and 3-4 ms (NaN when the window
+// holds no wobble, fewer than two flips, or no complete edge-on interval).
 //
 // Run:   build/studies/study_chapter5_platelets --scale quick --out runs/chapter5_platelets
 #include "common/cell_shape.hpp"
@@ -80,7 +83,8 @@ std::vector<double> sample(const sim::ImmersedBoundary& ib) {
     row.insert(row.end(), s.center.begin(), s.center.end());
     row.insert(row.end(), s.axes[0].begin(), s.axes[0].end());
     row.push_back(lowest - wall_y);
-    row.push_back(ib.diagnostics(0).volume.empty() ? 0 : ib.diagnostics(0).volume[std::size_t(c)]);
+    // NaN until a force call has measured it (a state just restored from a checkpoint).
+    row.push_back(ib.diagnostics(0).volume.empty() ? NAN : ib.diagnostics(0).volume[std::size_t(c)]);
   }
   const sim::TetheredPoints& e = ib.points(0);
   const host_vector<double> Xe(e.X.begin(), e.X.end()), A(e.anchors.begin(), e.anchors.end());
@@ -97,12 +101,50 @@ std::vector<double> sample(const sim::ImmersedBoundary& ib) {
 
 struct Platelet {
   std::vector<double> tilt, gap, height;  // rad (unwrapped), cm, cm
-  double volume_change = 0;
+  double volume_change = NAN;              // NaN until two samples have measured the volume
   double tilt_rate = 0, jeffery_rate = 0;  // over the second half, / gdot
   double edge_on_seconds = 0;              // time with the short axis within 45 deg of the flow
   int flips = 0;                           // passes of the tilt through 90 deg + k 180 deg
   double min_gap = 0;
+  // The seed's three numbers (Sec. 5.2); NaN when the window holds no such event.
+  double tumble_frequency = NAN;  // full orbits (2 pi) per s: 1 / (2 x the mean interval between flips)
+  double edge_on_per_tumble = NAN;  // s, the mean contiguous edge-on interval (begun and ended in the window)
+  double wobble_frequency = NAN;  // 1/s: 1 / (2 x the mean interval between crossings of the tilt's mean)
 };
+
+/// Where x(t) sampled at t[i-1], t[i] passes zero, linearly between the two samples.
+double crossing(const std::vector<double>& t, const std::vector<double>& x, std::size_t i) {
+  return t[i - 1] + (t[i] - t[i - 1]) * x[i - 1] / (x[i - 1] - x[i]);
+}
+
+/// Mean interval between successive entries of `times` (NaN for fewer than two).
+double mean_interval(const std::vector<double>& times) {
+  return times.size() < 2 ? NAN : (times.back() - times.front()) / double(times.size() - 1);
+}
+
+/// The wobble's frequency from the tilt after `settle`: the times the tilt crosses its mean there,
+/// a crossing counted once the tilt has moved a quarter of its standard deviation beyond the mean
+/// (so that jitter about the mean is not a wobble); 1 / (2 x their mean interval).
+double wobble_frequency(const std::vector<double>& t, const std::vector<double>& tilt, double settle) {
+  std::vector<double> ts, x;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= settle) ts.push_back(t[i]), x.push_back(tilt[i]);
+  if (x.size() < 3) return NAN;
+  double mean = 0, var = 0;
+  for (double v : x) mean += v / double(x.size());
+  for (double& v : x) v -= mean, var += v * v / double(x.size());
+  const double band = std::sqrt(var) / 4;
+  std::vector<double> crossings;
+  int side = 0;             // +1 above mean + band, -1 below mean - band, 0 not yet either
+  double last_zero = NAN;   // the latest passage through the mean
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (i > 0 && (x[i - 1] < 0) != (x[i] < 0)) last_zero = crossing(ts, x, i);
+    const int now = x[i] > band ? 1 : (x[i] < -band ? -1 : side);
+    if (side != 0 && now != side && std::isfinite(last_zero)) crossings.push_back(last_zero);
+    side = now;
+  }
+  return 1 / (2 * mean_interval(crossings));
+}
 
 }  // namespace
 
@@ -114,6 +156,7 @@ int main(int argc, char** argv) {
     const double us = units::us, ms = units::ms, gdot = 1000;
     const Setup s = full ? Setup{80, 60, 900, 128, 50 * units::ns, 100 * ms} : Setup{40, 30, 400, 64, 100 * units::ns, 0.3 * ms};
     const long total = std::lround(s.t_end / s.dt);
+    const double settle = 5 * ms;  // the wobble is read after the start-up response (a strain of 5)
     const int every = int(std::max(1L, total / 400));
 
     Json results = st::make_results(opt);
@@ -140,15 +183,16 @@ int main(int argc, char** argv) {
     Json ts = st::table({"gap_um", "t_ms", "strain", "tilt_deg", "jeffery_tilt_deg", "gap_now_um", "height_um"},
                         {"um", "ms", "", "deg", "deg", "um", "um"});
     Json sum = st::table({"gap_um", "min_gap_um", "tilt_end_deg", "tilt_rate_over_gdot", "jeffery_rate_over_gdot", "rate_over_jeffery",
-                          "flips", "flip_frequency_1_s", "edge_on_ms", "volume_change_rel"},
-                         {"um", "um", "deg", "", "", "", "", "1/s", "ms", ""});
+                          "flips", "flip_frequency_1_s", "edge_on_ms", "tumble_frequency_1_s", "edge_on_ms_per_tumble",
+                          "wobble_frequency_1_s", "volume_change_rel"},
+                         {"um", "um", "deg", "", "", "", "", "1/s", "ms", "1/s", "ms", "1/s", ""});
     double endothelium_max = 0;
     for (const auto& r : run.samples) endothelium_max = std::max(endothelium_max, r.back());
     for (int c = 0; c < 2; ++c) {
       const std::size_t o = 1 + 8 * std::size_t(c);
       Platelet p;
       std::vector<double> angle;
-      double v0 = 0;
+      double v0 = NAN;
       p.min_gap = INFINITY;
       for (const auto& r : run.samples) {
         // Tilt of the short axis from the wall normal (y) toward the flow (z), in (-90, 90] deg.
@@ -157,8 +201,13 @@ int main(int argc, char** argv) {
         p.gap.push_back(r[o + 6]);
         p.height.push_back(r[o + 1]);
         p.min_gap = std::min(p.min_gap, r[o + 6]);
-        if (r[o + 7] > 0 && v0 == 0) v0 = r[o + 7];
-        if (r[o + 7] > 0) p.volume_change = std::max(p.volume_change, std::abs(r[o + 7] - v0) / v0);
+        if (!std::isfinite(r[o + 7])) continue;  // not measured in this sample
+        if (!std::isfinite(v0)) {
+          v0 = r[o + 7];
+        } else {
+          const double change = std::abs(r[o + 7] - v0) / v0;
+          p.volume_change = std::isfinite(p.volume_change) ? std::max(p.volume_change, change) : change;
+        }
       }
       p.tilt = st::unwrap(angle, pi);
       // Jeffery's rigid spheroid in unbounded shear from the same axis (flow z, gradient y).
@@ -171,10 +220,30 @@ int main(int argc, char** argv) {
       // The tilt grows in the sense of the shear: u = gdot y e_z turns the axis from y toward z.
       p.tilt_rate = st::slope(th, std::vector<double>(p.tilt.begin() + long(half), p.tilt.end())) / gdot;
       p.jeffery_rate = st::slope(th, std::vector<double>(jt.begin() + long(half), jt.end())) / gdot;
+      // Edge-on: e = |tilt - the nearest k pi| - pi/4 > 0 (the short axis within 45 deg of the flow, the
+      // edge pointing at the wall; a continuous function of the tilt). A flip: the tilt passes
+      // 90 deg + k 180 deg, the middle of an edge-on interval.
+      std::vector<double> e(ns), flip_times, edge_on;
+      for (std::size_t i = 0; i < ns; ++i) e[i] = std::abs(std::remainder(p.tilt[i], pi)) - pi / 4;
+      double entered = NAN;
       for (std::size_t i = 1; i < ns; ++i) {
-        if (std::abs(std::remainder(p.tilt[i], pi)) > pi / 4) p.edge_on_seconds += t[i] - t[i - 1];
-        if (std::floor(p.tilt[i] / pi - 0.5) != std::floor(p.tilt[i - 1] / pi - 0.5)) ++p.flips;
+        if (e[i] > 0) p.edge_on_seconds += t[i] - t[i - 1];
+        const double k0 = std::floor(p.tilt[i - 1] / pi - 0.5), k1 = std::floor(p.tilt[i] / pi - 0.5);
+        if (k0 != k1) {
+          ++p.flips;
+          const double at = (std::max(k0, k1) + 0.5) * pi;  // the 90 deg + k 180 deg passed
+          flip_times.push_back(t[i - 1] + (t[i] - t[i - 1]) * (at - p.tilt[i - 1]) / (p.tilt[i] - p.tilt[i - 1]));
+        }
+        if (e[i - 1] <= 0 && e[i] > 0) entered = crossing(t, e, i);
+        if (e[i - 1] > 0 && e[i] <= 0 && std::isfinite(entered)) edge_on.push_back(crossing(t, e, i) - entered), entered = NAN;
       }
+      // One tumble end over end is a flip (pi); the seed's 30/s counts full orbits (2 pi): conventions.
+      p.tumble_frequency = 1 / (2 * mean_interval(flip_times));
+      if (!edge_on.empty()) {
+        p.edge_on_per_tumble = 0;
+        for (double d : edge_on) p.edge_on_per_tumble += d / double(edge_on.size());
+      }
+      p.wobble_frequency = wobble_frequency(t, p.tilt, t.front() + settle);
       const std::size_t stride = std::max<std::size_t>(1, ns / 200);
       for (std::size_t i = 0; i < ns; i += stride)
         ts["rows"].push(Json::Array{Json(gaps_um[c]), Json(t[i] / ms), Json(gdot * t[i]), Json(p.tilt[i] * 180 / pi), Json(jt[i] * 180 / pi),
@@ -182,21 +251,26 @@ int main(int argc, char** argv) {
       const double span = t.back() - t.front();
       sum["rows"].push(Json::Array{Json(gaps_um[c]), Json(p.min_gap / units::um), Json(p.tilt.back() * 180 / pi), Json(p.tilt_rate),
                                    Json(p.jeffery_rate), Json(p.tilt_rate / p.jeffery_rate), Json(double(p.flips)),
-                                   Json(span > 0 ? p.flips / span : NAN), Json(p.edge_on_seconds / ms), Json(p.volume_change)});
+                                   Json(span > 0 ? p.flips / span : NAN), Json(p.edge_on_seconds / ms), Json(p.tumble_frequency),
+                                   Json(p.edge_on_per_tumble / ms), Json(p.wobble_frequency), Json(p.volume_change)});
       const std::string k = c == 0 ? "near" : "far";
       results["values"]["min_gap_um_" + k] = p.min_gap / units::um;
       results["values"]["rate_over_jeffery_" + k] = p.tilt_rate / p.jeffery_rate;
       results["values"]["volume_change_" + k] = p.volume_change;
       results["values"]["flips_" + k] = double(p.flips);
       results["values"]["edge_on_ms_" + k] = p.edge_on_seconds / ms;
+      results["values"]["tumble_frequency_1_s_" + k] = p.tumble_frequency;
+      results["values"]["edge_on_ms_per_tumble_" + k] = p.edge_on_per_tumble / ms;
+      results["values"]["wobble_frequency_1_s_" + k] = p.wobble_frequency;
       st::log(opt, "platelet " + to_text(gaps_um[c]) + " um above the wall: min gap " + to_text(p.min_gap / units::um) + " um, tilt " +
                        to_text(p.tilt.back() * 180 / pi) + " deg, rate " + to_text(p.tilt_rate) + " gdot (Jeffery " + to_text(p.jeffery_rate) +
-                       "), flips " + to_text(p.flips) + ", edge-on " + to_text(p.edge_on_seconds / ms) + " ms, volume change " +
+                       "), flips " + to_text(p.flips) + ", edge-on " + to_text(p.edge_on_seconds / ms) + " ms (" + to_text(p.edge_on_per_tumble / ms) +
+                       " ms per tumble), tumbles " + to_text(p.tumble_frequency) + " /s, wobble " + to_text(p.wobble_frequency) + " /s, volume change " +
                        to_text(p.volume_change));
     }
     results["values"]["endothelium_displacement_um"] = endothelium_max / units::um;
     results["values"]["completed"] = run.stopped.empty() ? 1.0 : 0.0;
-    results["values"]["finished"] = run.finished ? 1.0 : 0.0;  // reached its end (or was stopped)
+    st::record_run(results, "platelets", run.progress(s.t_end));
     results["tables"]["platelets"] = ts;
     results["tables"]["summary"] = sum;
     // The cost: time per step and the time to the seed's 100 ms at the seed's step.
