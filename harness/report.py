@@ -10,7 +10,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from . import catalog  # noqa: E402
-from .checks import Table, fmt, tables  # noqa: E402
+from .checks import CheckError, Table, fmt, tables  # noqa: E402
 
 MAX_ROWS_SHOWN = 40
 
@@ -73,8 +73,11 @@ def figure(fig_spec, tabs, out_dir):
     for c in [fig_spec["x"]] + ys + gcols:
         if c not in t.columns:
             return None, f"figure '{fig_spec['id']}': table '{t.id}' has no column '{c}'"
+    try:
+        rows = t.select(fig_spec.get("where"))
+    except CheckError as e:
+        return None, f"figure '{fig_spec['id']}': {e}"
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    rows = t.select(fig_spec.get("where"))
     xi = t.columns.index(fig_spec["x"])
     gidx = [t.columns.index(c) for c in gcols]
     key = lambda r: ", ".join(str(r[i]) for i in gidx)  # noqa: E731
@@ -132,7 +135,7 @@ def render(meta, ref, results, outcome, out_dir, run_info):
              f"{run_info.get('date', '?')}; OMP_WAIT_POLICY={run_info.get('omp_wait_policy', 'unset')}; "
              f"OpenMP team {run_info.get('omp_team', 'not recorded')}; "
              f"OPENBLAS_CORETYPE={run_info.get('openblas_coretype', 'not recorded')}; "
-             f"driver wall time {run_info.get('seconds', 0):.1f} s; driver sources {run_info.get('driver_hash', 'unknown')}, "
+             f"driver wall time {run_info.get('seconds') or 0:.1f} s; driver sources {run_info.get('driver_hash', 'unknown')}, "
              f"reference {run_info.get('reference_hash', 'unknown')} (the index marks the report STALE when they change).")
     L.append("")
     runs = results.get("runs") or {}
