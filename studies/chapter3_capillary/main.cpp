@@ -86,6 +86,7 @@ struct CellCase {
   chapter3::Method method;
   int M;
   double k_bend_pN_um;
+  int md_degree = -1;  ///< evaluation sites: the scale's Bauer spiral (-1) or the stored MD set of this degree
 };
 
 std::vector<CellCase> cell_cases() {
@@ -94,6 +95,31 @@ std::vector<CellCase> cell_cases() {
           {"SHVD_m400_kb0", chapter3::Method::shvd, 19, 0.0},
           {"SHVD_m400_kb0.1", chapter3::Method::shvd, 19, 0.1},
           {"SHVD_m400_kb1", chapter3::Method::shvd, 19, 1.0}};
+}
+
+/// Full scale: the k_bend = 0 runs of Fig. 6 on two other choices the paper's bumps might depend on
+/// (reference conventions: bump_variants): the stored maximal-determinant sites of n = 4,624 (the
+/// paper's kind of evaluation set, with the weights of eq. 45) for the three methods, and SHVD
+/// with more interpolation sites than 625 on the study's sites ("When the number of interpolation
+/// points is greater than 625, we observe even more bumps", Sec. 5.1.2).
+std::vector<CellCase> variant_cases() {
+  return {{"LDSM_kb0_MD4624", chapter3::Method::ldsm, 19, 0.0, 67},
+          {"SHVD_m625_kb0_MD4624", chapter3::Method::shvd, 24, 0.0, 67},
+          {"SHVD_m400_kb0_MD4624", chapter3::Method::shvd, 19, 0.0, 67},
+          {"SHVD_m900_kb0", chapter3::Method::shvd, 29, 0.0},
+          {"SHVD_m1024_kb0", chapter3::Method::shvd, 31, 0.0}};
+}
+
+/// results["runs"][id] for one run (harness/FORMAT.md): a check that measures it waits for its end.
+void record(Json& results, const std::string& id, const Run& run) {
+  st::RunProgress p;
+  p.finished = run.done();
+  p.t = run.step() * run.model().dt;
+  p.t_end = run.model().steps * run.model().dt;
+  p.steps = run.step();
+  p.seconds_per_step = run.steps_timed() > 0 ? run.phases().total() / run.steps_timed() : NAN;
+  p.stopped = run.failure();
+  st::record_run(results, id, p);
 }
 
 /// Runs (or resumes, or reads back) one run; at full scale keeps its checkpoint.
@@ -518,6 +544,8 @@ int main(int argc, char** argv) {
       Run run(m, nullptr);
       const std::string label = std::string("empty_") + to_string(region) + "_eta" + to_text(eta);
       const bool over = runner.go(run, label);
+      // the study's grid under the id the checks name at both scales
+      record(results, region == Region::core && eta == S.eta ? std::string("empty_core") : label, run);
       const auto& ser = run.series();
       // the peak of the last step, and of the step at half the run
       double umax = NAN, uraw = NAN, uhalf = NAN;
@@ -562,13 +590,27 @@ int main(int argc, char** argv) {
     // ---- 3. The cell runs --------------------------------------------------------------------------
     const chapter3::EvaluationSet eval = chapter3::make_evaluation_set(S.n);
     st::log(opt, "evaluation set n = " + to_text(S.n) + " in " + to_text(eval.seconds) + " s");
+    std::map<int, chapter3::EvaluationSet> md_sets;  // the stored MD sets of the variants, by degree
+    auto sites_of = [&](const CellCase& cc) -> const chapter3::EvaluationSet& {
+      if (cc.md_degree < 0) return eval;
+      auto it = md_sets.find(cc.md_degree);
+      if (it == md_sets.end()) {
+        const std::string file =
+            st::source_path("reference/point_sets/max_determinant_N" + to_text(cc.md_degree) + ".txt");
+        it = md_sets.emplace(cc.md_degree, chapter3::make_md_evaluation_set(file, cc.md_degree)).first;
+        st::log(opt, "MD evaluation set N = " + to_text(cc.md_degree) + " (eq. 45 weights) in " +
+                         to_text(it->second.seconds) + " s");
+      }
+      return it->second;
+    };
     Json runs_t = st::table({"run", "eta", "dt", "method", "m", "k_bend_pN_um", "status", "steps_done", "steps_needed",
                              "seconds", "seconds_per_step", "time_to_solution_s", "area_change_max",
                              "volume_change", "v_cell_um_s", "v_over_u_max", "front_H_cv", "front_H_std_per_um",
                              "front_H_positive_fraction", "nonaxisymmetric_rms_um", "nonaxisymmetric_max_um",
-                             "bumps", "f_mean_pN_um2", "f_roughness", "f_noise", "f_back_mean_pN_um2", "cap_disp_um", "failed"},
+                             "bumps", "f_mean_pN_um2", "f_roughness", "f_noise", "f_back_mean_pN_um2", "cap_disp_um", "failed",
+                             "sites", "n"},
                             {"", "", "s", "", "", "pN um", "", "", "", "s", "s", "s", "", "", "um/s", "", "", "1/um", "", "um",
-                             "um", "", "pN/um^2", "", "", "pN/um^2", "um", ""});
+                             "um", "", "pN/um^2", "", "", "pN/um^2", "um", "", "", ""});
     Json series_t = st::table({"run", "t", "cx_um", "area_change", "volume_change", "v_cell_um_s", "uc_x_um_s",
                                "max_force_density_pN_um2"},
                               {"", "s", "um", "", "", "um/s", "um/s", "pN/um^2"});
@@ -593,8 +635,10 @@ int main(int argc, char** argv) {
       m.method = cc.method;
       m.M = cc.M;
       m.k_bend = cc.k_bend_pN_um * pN_um;
-      auto run = std::make_unique<Run>(m, &eval);
+      const chapter3::EvaluationSet& e = sites_of(cc);
+      auto run = std::make_unique<Run>(m, &e);
       const bool over = runner.go(*run, label);
+      record(results, label, *run);
       const int mm = (cc.M + 1) * (cc.M + 1);
       const double per = Runner::per_step(*run);
       const auto& ser = run->series();
@@ -622,8 +666,8 @@ int main(int argc, char** argv) {
         const View& vf = run->views().back();
         const double c[3] = {ser.back().c[0], ser.back().c[1], ser.back().c[2]};
         if (cc.method == chapter3::Method::shvd) fh = front_curvature(vf, c);
-        as = asymmetry(vf, eval.sites, eval.tris, c, tau);
-        fm = force_measures(vf, eval.tris, eval.sites, c);
+        as = asymmetry(vf, e.sites, e.tris, c, tau);
+        fm = force_measures(vf, e.tris, e.sites, c);
       }
       const std::string status = !over ? (run->step() > 0 ? "partial" : "not started")
                                        : (run->failure().empty() ? "finished" : "stopped: " + run->failure());
@@ -633,17 +677,21 @@ int main(int argc, char** argv) {
                                ok ? num(v_cell / um) : Json(), ok ? num(v_cell / um / u_max_empty) : Json(), num(fh.cv),
                                num(fh.std * um), num(fh.pos), num(as.rms / um), num(as.max / um),
                                ok ? Json(as.bumps) : Json(), num(fm.mean * 1e-3), num(fm.roughness),
-                               num(fm.noise), num(fm.back * 1e-3), num(disp / um), run->failure().empty() ? 0 : 1}));
+                               num(fm.noise), num(fm.back * 1e-3), num(disp / um), run->failure().empty() ? 0 : 1,
+                               e.family + " " + to_text(e.size()), double(e.size())}));
       st::log(opt, label + ": " + status + ", area change " + to_text(dA) + ", v_cell " + to_text(v_cell / um) +
                        " um/s, front H cv " + to_text(fh.cv) + ", asymmetry rms " + to_text(as.rms / um) +
                        " um, bumps " + to_text(as.bumps));
       if (!run->views().empty()) write_snapshots(opt.out_dir + "/paraview", label, *run);
+      if (ok) summary[label] = Summary{v_cell, fh.cv, fh.std, as.rms, double(as.bumps), fm.roughness, fm.back, fm.noise};
       if (!main) return;
-      if (ok) summary[cc.label] = Summary{v_cell, fh.cv, fh.std, as.rms, double(as.bumps), fm.roughness, fm.back, fm.noise};
       done[cc.label] = std::move(run);
     };
-    Json runs96 = runs_t;  // (empty: the same columns)
+    Json runs96 = runs_t, variants = runs_t;  // (empty: the same columns)
     for (const CellCase& cc : cell_cases()) run_case(cc, S.eta, runs_t, true, base.dt);
+    // Full scale: the variants of the k_bend = 0 runs on the study's grid (table runs_variants).
+    if (S.full)
+      for (const CellCase& cc : variant_cases()) run_case(cc, S.eta, variants, false, base.dt);
     // Full scale: the k_bend = 0 runs again on eta = 96 (sites h/2 apart), where the bumps and LDSM's
     // stability differ (reference conventions: grid).
     // There every run loses its surface near t = 7 ms with dt = 1e-4 s; LDSM and SHVD m = 400 again
@@ -656,6 +704,7 @@ int main(int argc, char** argv) {
     }
     T["runs"] = runs_t;
     if (S.full) T["runs_eta96"] = runs96;
+    if (S.full) T["runs_variants"] = variants;
     T["series"] = series_t;
 
     // ---- 4. Values for the checks -----------------------------------------------------------------
@@ -675,6 +724,21 @@ int main(int argc, char** argv) {
     V["nonaxisymmetric_rms_ratio_m625_over_m400"] =
         num(get("SHVD_m625_kb0", &Summary::rms) / get("SHVD_m400_kb0", &Summary::rms));
     V["nonaxisymmetric_rms_ratio_LDSM_over_m400"] = num(get("LDSM_kb0", &Summary::rms) / get("SHVD_m400_kb0", &Summary::rms));
+    // the variants (full scale): more interpolation sites than 625 against m = 625 (Sec. 5.1.2: "even
+    // more bumps"), and the three methods on the stored MD sites
+    for (const std::string m : {"m900", "m1024"}) {
+      const std::string lab = "SHVD_" + m + "_kb0_eta" + to_text(S.eta);
+      V["nonaxisymmetric_rms_ratio_" + m + "_over_m625"] = num(get(lab, &Summary::rms) / get("SHVD_m625_kb0", &Summary::rms));
+      V["bumps_" + m + "_minus_m625"] = num(get(lab, &Summary::bumps) - get("SHVD_m625_kb0", &Summary::bumps));
+    }
+    {
+      const std::string md = "_kb0_MD4624_eta" + to_text(S.eta);
+      V["nonaxisymmetric_rms_ratio_m625_over_m400_MD4624"] =
+          num(get("SHVD_m625" + md, &Summary::rms) / get("SHVD_m400" + md, &Summary::rms));
+      V["nonaxisymmetric_rms_ratio_LDSM_over_m400_MD4624"] =
+          num(get("LDSM" + md, &Summary::rms) / get("SHVD_m400" + md, &Summary::rms));
+      V["bumps_m625_minus_m400_MD4624"] = num(get("SHVD_m625" + md, &Summary::bumps) - get("SHVD_m400" + md, &Summary::bumps));
+    }
     V["f_roughness_ratio_LDSM_over_m400"] =
         num(get("LDSM_kb0", &Summary::roughness) / get("SHVD_m400_kb0", &Summary::roughness));
     V["f_noise_ratio_LDSM_over_m400"] = num(get("LDSM_kb0", &Summary::noise) / get("SHVD_m400_kb0", &Summary::noise));

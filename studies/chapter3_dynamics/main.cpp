@@ -36,10 +36,20 @@
 //       (or python3 -m harness run chapter3_dynamics --scale quick)
 #include "common/chapter3_relaxation.hpp"
 #include "common/study.hpp"
+#include "rbfib/cells/batch.hpp"
+#include "rbfib/cells/shapes.hpp"
 #include "rbfib/core/error.hpp"
+#include "rbfib/core/exec.hpp"
+#include "rbfib/core/threads.hpp"
+#include "rbfib/fluid/periodic_stokes.hpp"
+#include "rbfib/ib/interaction.hpp"
+#include "rbfib/linalg/blas.hpp"
 #include "rbfib/linalg/dense.hpp"
 #include "rbfib/mechanics/ldsm.hpp"
 #include "rbfib/surface/operators.hpp"
+#include "rbfib/surface/point_sets.hpp"
+#include "rbfib/surface/quadrature.hpp"
+#include "rbfib/surface/triangulation.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -48,6 +58,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
+#include <set>
 #include <sstream>
 
 using namespace rbfib;
@@ -60,19 +72,158 @@ namespace {
 Json::Array row(std::initializer_list<Json> xs) { return Json::Array(xs); }
 Json num(double x) { return std::isfinite(x) ? Json(x) : Json(); }
 
+using clock_type = std::chrono::steady_clock;
+double since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
+
+/// The site of `sites` with the largest x on the unit sphere. The ellipsoid of eq. (88) stretches
+/// the sphere's x by a > 0, so this is the rightmost evaluation site at t = 0: the paper's d_max
+/// point ("the point with largest x coordinate", Sec. 4.2).
+index_t rightmost_site(const surface::SphereSites& sites) {
+  index_t best = 0;
+  for (index_t i = 1; i < sites.size(); ++i)
+    if (std::cos(sites.theta[i]) * std::cos(sites.lambda[i]) > std::cos(sites.theta[best]) * std::cos(sites.lambda[best]))
+      best = i;
+  return best;
+}
+/// The angle of that site from the x axis (rad).
+double rightmost_offset(const surface::SphereSites& sites) {
+  const index_t i = rightmost_site(sites);
+  return std::acos(std::min(1.0, std::cos(sites.theta[i]) * std::cos(sites.lambda[i])));
+}
+
+/// A Bauer spiral of even size n, which has no site on the x axis (its rightmost site lies
+/// sqrt(pi / n) from it), with the weights of dissertation eq. (2.22), phi = r^3, as
+/// chapter3::make_evaluation_set builds the odd ones. axis_site is set to the rightmost site: the
+/// LDSM run (chapter3::Relaxation) measures its d_max at eval.axis_site when there is one.
+EvaluationSet even_spiral_set(index_t n) {
+  require(n >= 4 && n % 2 == 0, "even spiral size n", n, "must be even and >= 4");
+  const auto t0 = clock_type::now();
+  EvaluationSet e;
+  e.family = "spiral";
+  e.sites = surface::bauer_spiral(n);
+  const surface::RbfWeights q = surface::rbf_sphere_weights(e.sites, 3);
+  e.w = q.w;
+  e.rcond = q.rcond;
+  e.tris = surface::sphere_triangulation(e.sites);
+  e.Z = surface::ellipsoid(1, 1, 1).points(e.sites);
+  e.axis_site = rightmost_site(e.sites);
+  e.seconds = since(t0);
+  return e;
+}
+
+/// X += dt U over `count` values on the device (eq. 87).
+void forward_euler(double* X, const double* U, double dt, index_t count) {
+  for_each_index(count, [=] RBFIB_HD(index_t i) { X[i] += dt * U[i]; });
+}
+
+/// SHVD relaxation measured at one evaluation site
+/// chapter3::Relaxation measures SHVD's d_max at the material point (0, 0) (its interpolant there),
+/// while the paper's d_max point is the rightmost evaluation site, off the axis on most sets. So the
+/// driver steps SHVD itself here, with the steps 1-6 of Sec. 3.3 of
+/// studies/common/chapter3_relaxation.cpp, and records d_axis = (x_s - c_x)(t) - (x_s - c_x)(0)
+/// at evaluation site s (c: the centroid of the force call's quadrature, as there). On an odd
+/// spiral with s = its site at (0, 0) it gives the library's run (value rightmost_loop_vs_library).
+RelaxationResult relax_shvd_at_site(const RelaxationSpec& spec, const EvaluationSet& e, index_t site) {
+  require(site >= 0 && site < e.size(), "evaluation site", site, "must be a site of the set");
+  // the fluid: the periodic MAC grid on [-L, L]^3, the exact Stokes solve (alpha = 0), the kernel
+  MacGrid grid = make_mac_grid(3, {spec.eta, spec.eta, spec.eta}, {2 * spec.L, 2 * spec.L, 2 * spec.L},
+                               {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
+  grid.origin = {-spec.L, -spec.L, -spec.L};
+  PeriodicStokesSolver stokes(grid, spec.mu, 0.0);
+  ib::Interaction ib({stokes.operators().component_box(0), stokes.operators().component_box(1),
+                      stokes.operators().component_box(2)},
+                     spec.kernel);
+  VectorField f, u;
+  dvec p, U;
+  // the cell: unit-sphere reference, the degree-M interpolant through the m sites, the n sites
+  cells::CellTypeSpec ts;
+  ts.name = "SHVD m = " + to_text((spec.M + 1) * (spec.M + 1));
+  ts.shape = cells::ellipsoid_shape(1, 1, 1);
+  ts.data_sites = interpolation_sites(spec.M);
+  ts.sample_sites = e.sites;
+  ts.interpolant = cells::Interpolant::spherical_harmonics;
+  ts.sh_degree = spec.M;
+  ts.sphere_weights = e.w;
+  ts.model.elastic = total_energy(spec.Gs, spec.A, spec.sigma);
+  cells::Batch batch(std::make_shared<const cells::CellType>(ts), std::vector<cells::Placement>{cells::Placement{}});
+  const std::vector<double> X0 = spec.shape.points(ts.data_sites);  // eq. (88) or (89) at the m sites
+  thrust::copy(X0.begin(), X0.end(), batch.state().storage().begin());
+  const index_t n = e.size(), m = batch.type().n_data();
+  cells::CellForces out;
+  ib::SortedPoints at_eval, at_interp;
+  RelaxationResult r;
+  double x0 = 0;
+  const auto t0 = clock_type::now();
+  for (int k = 0; k <= spec.steps; ++k) {
+    share_cores();
+    try {
+      cells::compute_forces(batch, out);  // steps 1-2 (and F^ = F dA0)
+      if (k == 0 || k == spec.steps || (spec.record_every > 0 && k % spec.record_every == 0)) {
+        const std::vector<double> Xs = out.positions.to_host();
+        const double c[3] = {out.cells.centroid[0][0], out.cells.centroid[0][1], out.cells.centroid[0][2]};
+        if (k == 0) {
+          x0 = Xs[site] - c[0];
+          const std::vector<double> F0 = out.force.to_host();
+          double sum[3] = {0, 0, 0};
+          for (std::size_t i = 0; i < F0.size(); ++i) {
+            sum[i / n] += F0[i];
+            r.max_force0 = std::max(r.max_force0, std::abs(F0[i]));
+          }
+          r.force_integral0 = std::max({std::abs(sum[0]), std::abs(sum[1]), std::abs(sum[2])});
+        }
+        Sample s{k * spec.dt, Xs[site] - c[0] - x0, 0, INFINITY, out.cells.volume[0]};
+        for (index_t i = 0; i < n; ++i) {
+          const double dx = Xs[i] - c[0], dy = Xs[n + i] - c[1], dz = Xs[2 * n + i] - c[2];
+          const double rad = std::sqrt(dx * dx + dy * dy + dz * dz);
+          s.r_max = std::max(s.r_max, rad - 1);
+          s.r_min = std::min(s.r_min, rad - 1);
+        }
+        r.series.push_back(s);
+      }
+      if (k == spec.steps) break;
+      ib.sort(ptr(out.positions.storage()), n, at_eval);  // step 3
+      ib.spread(at_eval, ptr(out.force.storage()), f);
+      stokes.solve(f, u, p);                       // step 4
+      double* Xm = ptr(batch.state().storage());  // step 5: the velocity at the m sites
+      ib.sort(Xm, m, at_interp);
+      U.resize(static_cast<std::size_t>(3 * m));
+      ib.interpolate(at_interp, u, ptr(U));
+      if (!blas::all_finite(U)) throw NumericalError("SHVD: non-finite interpolated velocity at step " + to_text(k));
+      forward_euler(Xm, ptr(U), spec.dt, 3 * m);  // step 6, eq. (87)
+      r.steps = k + 1;
+    } catch (const NumericalError& err) {
+      r.failed = true;
+      r.failure = "SHVD at step " + to_text(k) + " (t = " + to_text(k * spec.dt) + "): " + err.what();
+      break;
+    }
+  }
+  r.seconds = since(t0);
+  return r;
+}
+
 /// The runs of the study: each computed once per invocation; at full scale also kept in
 /// DIR/run_<label>.txt (written atomically, with the commit that computed it) and read back from
-/// there. Layout: a header line "rbfib chapter3_dynamics run <label> <commit>", a line of the
-/// scalars, a line of the per-step medians of the phases, the failure message (or "-"), then
-/// one line per sample "t d_axis r_max r_min volume".
+/// there, so that the full scale can be completed over several sittings (RBFIB_SITTING_SECONDS:
+/// no run is started once the sitting's time is spent; the one in progress runs to its end). Runs
+/// are counted in groups (group()), recorded as results["runs"][group] (record()): a group is
+/// finished when every run asked of it was computed or read back.
+/// File layout: a header line "rbfib chapter3_dynamics run v2 <label> <commit>", a line of the
+/// scalars, a line of the per-step medians of the phases, the failure message (or "-"), a line
+/// "B s_1 ... s_B" of the cumulative wall time of the steps at the ends of B blocks (Table 1's
+/// lockstep runs; B = 0 otherwise), then one line per sample "t d_axis r_max r_min volume".
 class Runs {
  public:
-  explicit Runs(const st::Options& opt) : opt_(opt), keep_(opt.scale == st::Scale::full) {}
+  explicit Runs(const st::Options& opt) : opt_(opt), keep_(opt.scale == st::Scale::full) {
+    skipped_.force_integral0 = skipped_.max_force0 = NAN;
+  }
+
+  /// The group the next runs belong to.
+  void group(const std::string& g) { group_ = g; }
 
   const EvaluationSet& evaluation_set(index_t n) {
     auto it = sets_.find(n);
     if (it == sets_.end()) {
-      it = sets_.emplace(n, make_evaluation_set(n)).first;
+      it = sets_.emplace(n, n % 2 ? make_evaluation_set(n) : even_spiral_set(n)).first;
       st::log(opt_, "evaluation set n = " + to_text(n) + ": weights and triangulation in " +
                         to_text(it->second.seconds) + " s");
     }
@@ -85,60 +236,168 @@ class Runs {
            to_text(std::lround(1 / s.dt)) + "_steps" + to_text(s.steps) + "_every" + to_text(s.record_every);
   }
 
+  static std::string md_file(int N) {
+    return st::source_path("reference/point_sets/max_determinant_N" + to_text(N) + ".txt");
+  }
+
   /// The stored maximal-determinant-like set of degree N with the weights of eq. (45).
   const EvaluationSet& md_set(int N) {
     auto it = md_sets_.find(N);
     if (it == md_sets_.end()) {
-      const std::string file = st::source_path("reference/point_sets/max_determinant_N" + to_text(N) + ".txt");
-      it = md_sets_.emplace(N, make_md_evaluation_set(file, N)).first;
+      it = md_sets_.emplace(N, make_md_evaluation_set(md_file(N), N)).first;
       st::log(opt_, "MD evaluation set N = " + to_text(N) + ": eq. (45) weights and triangulation in " +
                         to_text(it->second.seconds) + " s");
     }
     return it->second;
   }
 
-  /// The run of spec on the spiral of n sites (md_degree < 0) or on the MD set of that degree.
+  /// The run of spec on the spiral of n sites (md_degree < 0) or on the MD set of that degree, its
+  /// d_max at the material point (0, 0).
   const RelaxationResult& get(const RelaxationSpec& s, index_t n, const std::string& shape_name, int md_degree = -1) {
-    const std::string key = label(s, n, md_degree < 0 ? shape_name : shape_name + "_MD");
-    auto it = done_.find(key);
-    if (it != done_.end()) return it->second;
-    RelaxationResult r;
-    if (!(keep_ && load(key, r))) {
-      r = relax(s, md_degree < 0 ? evaluation_set(n) : md_set(md_degree));
-      finished(key, r);
-    }
-    return done_.emplace(key, std::move(r)).first->second;
+    return run(label(s, n, md_degree < 0 ? shape_name : shape_name + "_MD"), s,
+               [&] { return relax(s, md_degree < 0 ? evaluation_set(n) : md_set(md_degree)); });
   }
 
-  /// Runs of one ellipsoid (same n) in lockstep (relax_lockstep), all again unless all are kept.
-  std::vector<const RelaxationResult*> get_lockstep(const std::vector<RelaxationSpec>& specs, index_t n) {
+  /// The run of spec on the ellipsoid with d_max at the rightmost evaluation site (the paper's
+  /// reading): on the even spiral of n sites (md_degree < 0) or on the MD set of that degree.
+  /// LDSM measures at eval.axis_site (set to that site), SHVD by relax_shvd_at_site.
+  const RelaxationResult& get_rightmost(const RelaxationSpec& s, index_t n, int md_degree = -1) {
+    const std::string key = md_degree < 0 ? label(s, n, "ellipsoid_rightmost")
+                                          : label(s, index_t(md_degree + 1) * (md_degree + 1), "ellipsoid_MD_rightmost");
+    return run(key, s, [&] {
+      EvaluationSet e = md_degree < 0 ? evaluation_set(n) : md_set(md_degree);
+      e.axis_site = rightmost_site(e.sites);
+      return s.method == Method::shvd ? relax_shvd_at_site(s, e, e.axis_site) : relax(s, e);
+    });
+  }
+
+  /// The SHVD run of spec on the odd spiral of n sites by relax_shvd_at_site at its site (0, 0):
+  /// the same run as get(s, n, "ellipsoid"), stepped by the driver.
+  const RelaxationResult& get_driver_loop(const RelaxationSpec& s, index_t n) {
+    return run(label(s, n, "ellipsoid_driver_loop"), s, [&] {
+      const EvaluationSet& e = evaluation_set(n);
+      return relax_shvd_at_site(s, e, e.axis_site);
+    });
+  }
+
+  /// Runs of one ellipsoid (same n) in lockstep, one step of each in turn, so that a change of load
+  /// on the shared machine falls on all of them alike; all again unless all are kept. The cumulative
+  /// wall time of each run's steps is taken at the ends of `blocks` blocks of steps (block_seconds).
+  std::vector<const RelaxationResult*> get_lockstep(const std::vector<RelaxationSpec>& specs, index_t n, int blocks) {
     std::vector<std::string> keys;
     std::vector<RelaxationResult> rs(specs.size());
+    std::vector<std::vector<double>> ends(specs.size());
     bool all = true;
     for (std::size_t i = 0; i < specs.size(); ++i) {
       keys.push_back(label(specs[i], n, "ellipsoid_lockstep"));
-      all = all && (done_.count(keys[i]) || (keep_ && load(keys[i], rs[i])));
+      all = all && (done_.count(keys[i]) || (keep_ && load(keys[i], rs[i], ends[i])));
+    }
+    if (!all && sitting_.remaining() <= 0) {
+      for (std::size_t i = 0; i < specs.size(); ++i) count(keys[i], specs[i], nullptr);
+      return std::vector<const RelaxationResult*>(specs.size(), &skipped_);
     }
     if (!all) {
-      std::vector<std::pair<RelaxationSpec, const EvaluationSet*>> in;
-      for (const RelaxationSpec& s : specs) in.emplace_back(s, &evaluation_set(n));
-      rs = relax_lockstep(in);
+      std::vector<std::unique_ptr<Relaxation>> runs;
+      for (const RelaxationSpec& s : specs) runs.push_back(std::make_unique<Relaxation>(s, evaluation_set(n)));
+      const int steps = specs.front().steps, every = std::max(1, steps / blocks);
+      int last = 0;
+      for (auto& e : ends) e.clear();
+      for (bool any = true; any;) {
+        any = false;
+        for (auto& r : runs) any = r->advance() || any;
+        const int k = runs.front()->step();
+        if (k != last && (k % every == 0 || k == steps)) {
+          for (std::size_t i = 0; i < runs.size(); ++i) ends[i].push_back(runs[i]->result().phases.total());
+          last = k;
+        }
+      }
       for (std::size_t i = 0; i < specs.size(); ++i) {
+        rs[i] = runs[i]->result();
         done_.erase(keys[i]);
+        blocks_[keys[i]] = ends[i];
         finished(keys[i], rs[i]);
       }
     }
     std::vector<const RelaxationResult*> out;
     for (std::size_t i = 0; i < specs.size(); ++i) {
       auto it = done_.find(keys[i]);
-      if (it == done_.end()) it = done_.emplace(keys[i], std::move(rs[i])).first;
+      if (it == done_.end()) {
+        it = done_.emplace(keys[i], std::move(rs[i])).first;
+        blocks_[keys[i]] = ends[i];
+      }
+      count(keys[i], specs[i], &it->second);
       out.push_back(&it->second);
     }
     return out;
   }
 
+  /// The block ends of a lockstep run (cumulative wall time of its steps, s).
+  const std::vector<double>& block_seconds(const RelaxationSpec& s, index_t n) const {
+    static const std::vector<double> none;
+    auto it = blocks_.find(label(s, n, "ellipsoid_lockstep"));
+    return it == blocks_.end() ? none : it->second;
+  }
+
+  /// results["runs"][group] for every group: finished when each run asked of it was there.
+  void record(Json& results) const {
+    for (const auto& [id, g] : groups_) {
+      st::RunProgress p;
+      p.finished = g.finished;
+      p.t = g.t;
+      p.t_end = g.t_end;
+      p.steps = g.steps;
+      p.seconds_per_step = g.steps > 0 ? g.seconds / double(g.steps) : NAN;
+      p.stopped = g.stopped;
+      st::record_run(results, id, p);
+    }
+  }
+
  private:
+  /// Simulated time, steps and wall time of a group's runs (summed), and whether all are there.
+  struct Group {
+    double t = 0, t_end = 0, seconds = 0;
+    long steps = 0;
+    bool finished = true;
+    std::string stopped;  ///< the first numerical stop among them
+  };
+
   std::string file(const std::string& label) const { return opt_.out_dir + "/run_" + label + ".txt"; }
+
+  /// The run `key` of spec: done this invocation, read back, computed, or (the sitting spent) skipped.
+  template <class Compute>
+  const RelaxationResult& run(const std::string& key, const RelaxationSpec& s, Compute compute) {
+    auto it = done_.find(key);
+    if (it == done_.end()) {
+      RelaxationResult r;
+      std::vector<double> ends;
+      if (!(keep_ && load(key, r, ends))) {
+        if (sitting_.remaining() <= 0) {
+          count(key, s, nullptr);
+          return skipped_;
+        }
+        r = compute();
+        finished(key, r);
+      }
+      it = done_.emplace(key, std::move(r)).first;
+    }
+    count(key, s, &it->second);
+    return it->second;
+  }
+
+  /// Adds run `key` to the current group once (r = nullptr: not run in this sitting).
+  void count(const std::string& key, const RelaxationSpec& s, const RelaxationResult* r) {
+    if (!counted_.insert(group_ + " " + key).second) return;
+    Group& g = groups_[group_];
+    g.t_end += s.steps * s.dt;
+    if (!r) {
+      g.finished = false;
+      return;
+    }
+    g.t += r->steps * s.dt;
+    g.steps += r->steps;
+    g.seconds += r->seconds;
+    if (r->failed && g.stopped.empty()) g.stopped = r->failure;
+  }
 
   void finished(const std::string& label, const RelaxationResult& r) {
     if (keep_) save(label, r);
@@ -151,7 +410,7 @@ class Runs {
     {
       std::ofstream f(tmp);
       f.precision(17);
-      f << "rbfib chapter3_dynamics run " << label << " " << st::source_commit() << "\n";
+      f << "rbfib chapter3_dynamics run v2 " << label << " " << st::source_commit() << "\n";
       const PhaseTimes& p = r.phases;
       f << r.steps << " " << int(r.failed) << " " << r.seconds << " " << p.forces << " " << p.spread << " " << p.solve
         << " " << p.interpolate << " " << p.update << " " << p.force_products << " " << r.force_integral0 << " "
@@ -160,6 +419,11 @@ class Runs {
       f << q.forces << " " << q.spread << " " << q.solve << " " << q.interpolate << " " << q.update << " "
         << q.force_products << "\n";
       f << (r.failed ? r.failure : "-") << "\n";
+      auto it = blocks_.find(label);
+      const std::vector<double> none, &ends = it == blocks_.end() ? none : it->second;
+      f << ends.size();
+      for (double x : ends) f << " " << x;
+      f << "\n";
       for (const Sample& s : r.series)
         f << s.t << " " << s.d_axis << " " << s.r_max << " " << s.r_min << " " << s.volume << "\n";
       if (!f) throw std::runtime_error("cannot write " + tmp);
@@ -167,14 +431,14 @@ class Runs {
     std::filesystem::rename(tmp, path);
   }
 
-  bool load(const std::string& label, RelaxationResult& r) const {
+  bool load(const std::string& label, RelaxationResult& r, std::vector<double>& ends) {
     std::ifstream f(file(label));
     if (!f) return false;
-    std::string header, scalars, medians, failure, line;
+    std::string header, scalars, medians, failure, block_line, line;
     std::getline(f, header);
-    const std::string tag = "rbfib chapter3_dynamics run " + label + " ";
+    const std::string tag = "rbfib chapter3_dynamics run v2 " + label + " ";
     if (header.rfind(tag, 0) != 0 || !std::getline(f, scalars) || !std::getline(f, medians) ||
-        !std::getline(f, failure))
+        !std::getline(f, failure) || !std::getline(f, block_line))
       return false;
     auto phases = [](const std::string& text, PhaseTimes& q) {
       std::istringstream in(text);
@@ -189,20 +453,34 @@ class Runs {
       return false;
     r.failed = failed != 0;
     r.failure = r.failed ? failure : "";
+    std::istringstream b(block_line);
+    std::size_t count = 0;
+    if (!(b >> count)) return false;
+    ends.resize(count);
+    for (double& x : ends)
+      if (!(b >> x)) return false;
     while (std::getline(f, line)) {
       std::istringstream q(line);
       Sample x{};
       if (q >> x.t >> x.d_axis >> x.r_max >> x.r_min >> x.volume) r.series.push_back(x);
     }
+    if (r.series.empty()) return false;
+    blocks_[label] = ends;
     st::log(opt_, label + ": taken from " + file(label) + " (commit " + header.substr(tag.size()) + ")");
-    return !r.series.empty();
+    return true;
   }
 
   const st::Options& opt_;
   bool keep_;
+  const st::Sitting sitting_;
+  RelaxationResult skipped_;  ///< what a run not started in this sitting gives (no samples)
+  std::string group_ = "runs";
+  std::map<std::string, Group> groups_;
+  std::set<std::string> counted_;
   std::map<index_t, EvaluationSet> sets_;
   std::map<int, EvaluationSet> md_sets_;
   std::map<std::string, RelaxationResult> done_;
+  std::map<std::string, std::vector<double>> blocks_;
 };
 
 /// Best time (of 11) of the jets' products of one SHVD force call for the degree-M interpolant
@@ -248,6 +526,7 @@ struct Setup {
   // Table 1: m = 64 and 225.
   std::vector<int> table1_etas;
   double table1_t;
+  int table1_blocks = 10;  // blocks of steps over which the timing noise of the ratio is measured
 
   explicit Setup(const st::Options& o)
       : opt(o),
@@ -278,6 +557,7 @@ struct Setup {
 
 /// Fig. 5: d_max at t = 3 and its error against a grid 1.5 times finer
 void fig5(const Setup& S, Runs& runs, Json& T, Json& V) {
+  runs.group("fig5");
   Json t5 = st::table({"method", "eta", "n", "m", "dt", "d_max", "eta_ref", "d_max_ref", "err", "seconds"},
                       {"", "", "", "", "1", "1", "", "1", "1", "s"});
   Json agree = st::table({"eta", "d_max_SHVD", "d_max_LDSM", "method_diff", "err_SHVD", "err_LDSM", "diff_over_err"},
@@ -326,11 +606,89 @@ void fig5(const Setup& S, Runs& runs, Json& T, Json& V) {
                      ", LDSM " + to_text(st::power_law_order(xs[Method::ldsm], es[Method::ldsm])));
 }
 
+/// Fig. 5 with the paper's d_max point: the rightmost evaluation site
+/// Sec. 4.2: "the change in distance ... of the rightmost point (the point with largest x
+/// coordinate) minus the center of mass". Each grid with its own n = 2 eta^2 sites: an even Bauer
+/// spiral, which has no site on the x axis (its rightmost site lies sqrt(pi/n) from it, as an MD
+/// set's lies some part of a spacing away), d_max = (x_s - c_x)(3) - (x_s - c_x)(0) at that site s,
+/// c the centroid as for our d_max; the error against the grid 1.5 times finer with its own set
+/// and its own rightmost site. Full scale also: the paper's own sets for eta = 32 and its
+/// reference, the stored MD sets of n = 2025 and 4624 with eq. (45) weights.
+void fig5_rightmost(const Setup& S, Runs& runs, Json& T, Json& V) {
+  runs.group("fig5_rightmost");
+  auto n_even = [](int eta) { return index_t(2) * eta * eta; };
+  Json t = st::table({"method", "eta", "n", "offset_rad", "d_max", "eta_ref", "n_ref", "offset_ref_rad", "d_max_ref",
+                      "err", "err_axis", "err_over_err_axis", "d_max_minus_axis"},
+                     {"", "", "", "rad", "1", "", "", "rad", "1", "1", "1", "", "1"});
+  std::map<Method, std::vector<double>> xs, es;
+  for (int eta : S.fig5_etas) {
+    const int ref = eta * 3 / 2;
+    for (Method m : {Method::shvd, Method::ldsm}) {
+      const RelaxationResult& a = runs.get_rightmost(S.spec(m, S.ellipsoid, eta, S.fig5_t, S.fig5_M, 12), n_even(eta));
+      const RelaxationResult& b = runs.get_rightmost(S.spec(m, S.ellipsoid, ref, S.fig5_t, S.fig5_M, 12), n_even(ref));
+      // our d_max (the material point (0, 0) on the odd spirals), from Fig. 5's runs
+      const RelaxationResult& ax =
+          runs.get(S.spec(m, S.ellipsoid, eta, S.fig5_t, S.fig5_M, 12), S.n_for(eta), "ellipsoid");
+      const RelaxationResult& bx =
+          runs.get(S.spec(m, S.ellipsoid, ref, S.fig5_t, S.fig5_M, 12), S.n_for(ref), "ellipsoid");
+      const bool ok = !a.failed && !b.failed, ok_axis = !ax.failed && !bx.failed;
+      const double err = ok ? std::abs(a.d_axis() - b.d_axis()) : NAN;
+      const double err_axis = ok_axis ? std::abs(ax.d_axis() - bx.d_axis()) : NAN;
+      t["rows"].push(row({to_string(m), eta, double(n_even(eta)), rightmost_offset(surface::bauer_spiral(n_even(eta))),
+                          ok ? num(a.d_axis()) : Json(), ref, double(n_even(ref)),
+                          rightmost_offset(surface::bauer_spiral(n_even(ref))), ok ? num(b.d_axis()) : Json(), num(err),
+                          num(err_axis), num(err / err_axis), num(a.d_axis() - ax.d_axis())}));
+      if (std::isfinite(err) && err > 0) {
+        xs[m].push_back(eta);
+        es[m].push_back(err);
+      }
+    }
+  }
+  T["fig5_rightmost"] = t;
+  for (Method m : {Method::shvd, Method::ldsm}) {
+    const bool all = xs[m].size() == S.fig5_etas.size();
+    V[std::string("fig5_rightmost_order_fit_") + to_string(m)] = all ? num(st::power_law_order(xs[m], es[m])) : Json();
+  }
+  // The driver's SHVD loop against the library's on the coarsest grid (the same run).
+  {
+    const RelaxationSpec s = S.spec(Method::shvd, S.ellipsoid, S.fig5_etas.front(), S.fig5_t, S.fig5_M, 12);
+    const RelaxationResult& lib = runs.get(s, S.n_for(s.eta), "ellipsoid");
+    const RelaxationResult& drv = runs.get_driver_loop(s, S.n_for(s.eta));
+    V["rightmost_loop_vs_library"] =
+        !lib.failed && !drv.failed ? num(std::abs(drv.d_axis() - lib.d_axis())) : Json();
+  }
+  st::log(S.opt, "Fig. 5, rightmost site: power-law orders SHVD " +
+                     to_text(st::power_law_order(xs[Method::shvd], es[Method::shvd])) + ", LDSM " +
+                     to_text(st::power_law_order(xs[Method::ldsm], es[Method::ldsm])));
+  if (!S.full) return;
+  // The paper's sets of eta = 32 and of its reference, eta = 48.
+  Json md = st::table({"method", "eta", "n", "offset_rad", "d_max", "eta_ref", "n_ref", "offset_ref_rad", "d_max_ref",
+                       "err", "err_spiral", "err_axis"},
+                      {"", "", "", "rad", "1", "", "", "rad", "1", "1", "1", "1"});
+  const int eta = 32, ref = 48, N = 44, N_ref = 67;  // n = 2025 and 4624 (Sec. 4.2)
+  for (Method m : {Method::shvd, Method::ldsm}) {
+    const RelaxationResult& a = runs.get_rightmost(S.spec(m, S.ellipsoid, eta, S.fig5_t, S.fig5_M, 12), 0, N);
+    const RelaxationResult& b = runs.get_rightmost(S.spec(m, S.ellipsoid, ref, S.fig5_t, S.fig5_M, 12), 0, N_ref);
+    const RelaxationResult& as = runs.get_rightmost(S.spec(m, S.ellipsoid, eta, S.fig5_t, S.fig5_M, 12), n_even(eta));
+    const RelaxationResult& bs = runs.get_rightmost(S.spec(m, S.ellipsoid, ref, S.fig5_t, S.fig5_M, 12), n_even(ref));
+    const RelaxationResult& ax = runs.get(S.spec(m, S.ellipsoid, eta, S.fig5_t, S.fig5_M, 12), S.n_for(eta), "ellipsoid");
+    const RelaxationResult& bx = runs.get(S.spec(m, S.ellipsoid, ref, S.fig5_t, S.fig5_M, 12), S.n_for(ref), "ellipsoid");
+    const bool ok = !a.failed && !b.failed;
+    md["rows"].push(row({to_string(m), eta, double((N + 1) * (N + 1)),
+                         rightmost_offset(surface::read_sphere_sites(Runs::md_file(N))), ok ? num(a.d_axis()) : Json(), ref,
+                         double((N_ref + 1) * (N_ref + 1)), rightmost_offset(surface::read_sphere_sites(Runs::md_file(N_ref))),
+                         ok ? num(b.d_axis()) : Json(), ok ? num(std::abs(a.d_axis() - b.d_axis())) : Json(),
+                         num(std::abs(as.d_axis() - bs.d_axis())), num(std::abs(ax.d_axis() - bx.d_axis()))}));
+  }
+  T["fig5_rightmost_md"] = md;
+}
+
 /// The time step's share of the Fig. 5 error
 /// Forward Euler (eq. 87) is first order in dt = 1/(2 eta): on one grid (the coarsest of Fig. 5)
 /// d_max at t = 3 with dt, dt/2, dt/4 (SHVD, m = 64). The first-order extrapolated time error at
 /// dt is 2 |d(dt) - d(dt/2)|, compared with the grid's error in Fig. 5 (space and time together).
 void time_step(const Setup& S, Runs& runs, Json& T, Json& V) {
+  runs.group("fig5_time_space");
   const int eta = S.fig5_etas.front();
   Json t = st::table({"eta", "dt", "steps", "d_max", "diff_to_half_dt", "order_dt"}, {"", "1", "", "1", "1", ""});
   std::vector<double> dts, ds;
@@ -363,6 +721,7 @@ void time_step(const Setup& S, Runs& runs, Json& T, Json& V) {
 /// The grids eta, 1.5 eta, 2.25 eta (the coarsest of Fig. 5 and its refinements) with one dt,
 /// that of the finest: the differences of d_max are then the spatial (grid and n) error alone.
 void space_only(const Setup& S, Runs& runs, Json& T, Json& V) {
+  runs.group("fig5_time_space");
   const int e0 = S.fig5_etas.front();
   const std::vector<int> etas = {e0, e0 * 3 / 2, e0 * 9 / 4};
   const double dt = S.dt_for(etas.back());
@@ -392,6 +751,7 @@ void space_only(const Setup& S, Runs& runs, Json& T, Json& V) {
 /// Beside each pair, SHVD on a grid 1.5 times finer (eta = 48, dt = 1/96, the same n): the IB
 /// discretization error that the paper names as the reason both methods agree.
 void fig4(const Setup& S, Runs& runs, Json& T, Json& /*V*/) {
+  runs.group("fig4");
   Json t4 = st::table({"series", "shape", "method", "eta", "t", "r_max", "r_min", "d_axis"},
                       {"", "", "", "", "1", "1", "1", "1"});
   Json t4d = st::table({"shape", "method_diff", "grid_diff_SHVD", "diff_over_grid_diff", "initial_r_max",
@@ -414,7 +774,7 @@ void fig4(const Setup& S, Runs& runs, Json& T, Json& /*V*/) {
     }
     // largest difference over the common times of r_max and r_min (Fig. 4's quantities)
     auto max_diff = [](const RelaxationResult& a, const RelaxationResult& b) {
-      if (a.failed || b.failed || a.series.size() != b.series.size()) return double(NAN);
+      if (a.failed || b.failed || a.series.empty() || a.series.size() != b.series.size()) return double(NAN);
       double d = 0;
       for (std::size_t i = 0; i < a.series.size(); ++i)
         d = std::max(
@@ -442,6 +802,7 @@ void fig4(const Setup& S, Runs& runs, Json& T, Json& /*V*/) {
 /// |sum_i F^_i|_inf of the SHVD forces at t = 0 (the translation-invariant force integrates to
 /// zero; LDSM's sum is zero to rounding by construction).
 void quadrature(const Setup& S, Runs& runs, Json& T, Json& /*V*/) {
+  runs.group("fig4");
   Json quad = st::table({"use", "shape", "n", "m", "force_integral", "max_force", "paper_criterion"},
                         {"", "", "", "", "1", "1", "1"});
   const int records = int(std::lround(S.fig4_t * 8));
@@ -455,6 +816,7 @@ void quadrature(const Setup& S, Runs& runs, Json& T, Json& /*V*/) {
   for (int eta : S.fig5_etas) grids.insert(grids.end(), {eta, eta * 3 / 2});
   std::sort(grids.begin(), grids.end());
   grids.erase(std::unique(grids.begin(), grids.end()), grids.end());
+  runs.group("fig5");
   for (int k : grids) {
     const RelaxationResult& shvd =
         runs.get(S.spec(Method::shvd, S.ellipsoid, k, S.fig5_t, S.fig5_M, 12), S.n_for(k), "ellipsoid");
@@ -468,6 +830,7 @@ void quadrature(const Setup& S, Runs& runs, Json& T, Json& /*V*/) {
 /// d_max at t = 3 on the stored MD sets (n = 2025, 4624) against the spirals of the same grid
 /// (n = 2049, 4609), beside that grid's error in Fig. 5.
 void sites(const Setup& S, Runs& runs, Json& T, Json& /*V*/) {
+  runs.group("sites");
   Json t = st::table({"method", "eta", "n_MD", "eq45_residual", "d_max_MD", "n_spiral", "d_max_spiral", "sites_diff",
                       "err_grid", "diff_over_err"},
                      {"", "", "", "", "1", "", "1", "1", "1", ""});
@@ -493,13 +856,29 @@ void sites(const Setup& S, Runs& runs, Json& T, Json& /*V*/) {
   st::log(S.opt, "evaluation-site comparison done");
 }
 
+/// The sample standard deviation over the blocks of a lockstep run of the ratio of the wall times
+/// of its steps, SHVD over LDSM, block by block (the cumulative times at the blocks' ends; NaN for
+/// fewer than two blocks).
+double block_ratio_std(const std::vector<double>& shvd, const std::vector<double>& ldsm) {
+  if (shvd.size() != ldsm.size() || shvd.size() < 2) return NAN;
+  std::vector<double> r;
+  for (std::size_t j = 0; j < shvd.size(); ++j)
+    r.push_back((shvd[j] - (j ? shvd[j - 1] : 0)) / (ldsm[j] - (j ? ldsm[j - 1] : 0)));
+  double mean = 0, s2 = 0;
+  for (double x : r) mean += x / double(r.size());
+  for (double x : r) s2 += (x - mean) * (x - mean);
+  return std::sqrt(s2 / double(r.size() - 1));
+}
+
 /// Table 1: SHVD / LDSM wall time, and where each method spends it
 /// ratio_*: wall time of the steps (the paper's measure); ratio_*_median: from the per-step medians
 /// of each phase (the three runs of a grid advance in lockstep, so both see the same load).
 void table1(const Setup& S, Runs& runs, Json& T, Json& V) {
+  runs.group("table1");
   Json t1 = st::table({"eta", "n", "t_contraction", "steps", "ldsm_seconds", "shvd_m64_seconds", "shvd_m225_seconds",
-                       "ratio_m64", "ratio_m225", "ratio_m64_median", "ratio_m225_median"},
-                      {"", "", "1", "", "s", "s", "s", "", "", "", ""});
+                       "ratio_m64", "ratio_m225", "ratio_m64_median", "ratio_m225_median", "blocks",
+                       "ratio_m64_block_std", "ratio_m225_block_std"},
+                      {"", "", "1", "", "s", "s", "s", "", "", "", "", "", "", ""});
   Json phases =
       st::table({"method", "eta", "n", "forces_seconds", "force_products_seconds", "spread_seconds", "solve_seconds",
                  "interpolate_seconds", "update_seconds", "step_seconds", "forces_share", "product_gflops"},
@@ -509,16 +888,19 @@ void table1(const Setup& S, Runs& runs, Json& T, Json& V) {
       {"", "", "", "s", "s", "", "", ""});
   for (int eta : S.table1_etas) {
     const index_t n = S.n_for(eta);
-    const std::vector<const RelaxationResult*> g =
-        runs.get_lockstep({S.spec(Method::ldsm, S.ellipsoid, eta, S.table1_t, 7, 0),
-                           S.spec(Method::shvd, S.ellipsoid, eta, S.table1_t, 7, 0),
-                           S.spec(Method::shvd, S.ellipsoid, eta, S.table1_t, 14, 0)},
-                          n);
+    const std::vector<RelaxationSpec> specs = {S.spec(Method::ldsm, S.ellipsoid, eta, S.table1_t, 7, 0),
+                                               S.spec(Method::shvd, S.ellipsoid, eta, S.table1_t, 7, 0),
+                                               S.spec(Method::shvd, S.ellipsoid, eta, S.table1_t, 14, 0)};
+    const std::vector<const RelaxationResult*> g = runs.get_lockstep(specs, n, S.table1_blocks);
     const RelaxationResult &L = *g[0], &S64 = *g[1], &S225 = *g[2];
     const double lt = L.phases.total(), lm = L.median.total();
-    t1["rows"].push(
-        row({eta, double(n), S.table1_t, L.steps, lt, S64.phases.total(), S225.phases.total(), S64.phases.total() / lt,
-             S225.phases.total() / lt, S64.median.total() / lm, S225.median.total() / lm}));
+    // The timing noise of the ratio in this run: the spread of the ratio over its blocks of steps.
+    const std::vector<double>& bl = runs.block_seconds(specs[0], n);
+    const double std64 = block_ratio_std(runs.block_seconds(specs[1], n), bl);
+    const double std225 = block_ratio_std(runs.block_seconds(specs[2], n), bl);
+    t1["rows"].push(row({eta, double(n), S.table1_t, L.steps, lt, S64.phases.total(), S225.phases.total(),
+                         num(S64.phases.total() / lt), num(S225.phases.total() / lt), num(S64.median.total() / lm),
+                         num(S225.median.total() / lm), double(bl.size()), num(std64), num(std225)}));
     for (const auto& [label, r] : std::vector<std::pair<std::string, const RelaxationResult*>>{
              {"LDSM", &L}, {"SHVD m = 64", &S64}, {"SHVD m = 225", &S225}}) {
       const PhaseTimes& p = r->median;
@@ -538,8 +920,8 @@ void table1(const Setup& S, Runs& runs, Json& T, Json& V) {
           row({eta, double(n), (M + 1) * (M + 1), t_gemm, t_gemv, t_gemv / t_gemm, r->median.total() / lm, with_gemv}));
     }
     if (eta == S.table1_etas.back()) {
-      V["table1_ratio_m64_median_largest_eta"] = S64.median.total() / lm;
-      V["table1_ratio_m225_minus_m64_median_largest_eta"] = (S225.median.total() - S64.median.total()) / lm;
+      V["table1_ratio_m64_median_largest_eta"] = num(S64.median.total() / lm);
+      V["table1_ratio_m225_minus_m64_median_largest_eta"] = num((S225.median.total() - S64.median.total()) / lm);
     }
   }
   T["table1"] = t1;
@@ -591,6 +973,7 @@ int main(int argc, char** argv) {
 
     // ---- 2. Fig. 5, and the time and space parts of its error ----------------------------------
     fig5(S, runs, T, V);
+    fig5_rightmost(S, runs, T, V);
     time_step(S, runs, T, V);
     space_only(S, runs, T, V);
     // ---- 3. Fig. 4, the quadrature error of the sites, the paper's sites -----------------------
@@ -600,6 +983,7 @@ int main(int argc, char** argv) {
     // ---- 4. Table 1 ----------------------------------------------------------------------------
     table1(S, runs, T, V);
 
+    runs.record(results);
     st::write_results(opt, results);
     return 0;
   });
