@@ -13,9 +13,9 @@
 #include "rbfib/core/quantity.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/linalg/dense.hpp"
-#include "rbfib/scene/checkpoint.hpp"
+#include "rbfib/io/checkpoint.hpp"
 #include "rbfib/scene/scene.hpp"
-#include "rbfib/scene/snapshot.hpp"
+#include "rbfib/io/snapshot.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -174,7 +174,7 @@ void trim_csv(const std::string& path, long last) {
 
 /// Steps the scene to t_end, writing diagnostics and checkpoints into out.
 int advance(const scene::Scene& s, sim::ImmersedBoundary& ib, const std::string& out, double t_end,
-            scene::SnapshotWriter* snapshots) {
+            io::SnapshotWriter* snapshots) {
   const std::string checkpoint = out + "/checkpoint.h5";
   double next_snapshot = s.snapshot_every > 0 ? (std::floor(ib.time() / s.snapshot_every + 1e-9) + 1) * s.snapshot_every : 0;
   std::ofstream csv(out + "/diagnostics.csv", std::ios::app);
@@ -207,7 +207,7 @@ int advance(const scene::Scene& s, sim::ImmersedBoundary& ib, const std::string&
     }
     if (s.checkpoint_every > 0 && ib.time() >= next_checkpoint * (1 - 1e-12)) {
       csv.flush();
-      scene::write_checkpoint(checkpoint, s.source, ib);
+      io::write_checkpoint(checkpoint, s.source, ib);
       next_checkpoint += s.checkpoint_every;
     }
     const auto now = std::chrono::steady_clock::now();
@@ -224,7 +224,7 @@ int advance(const scene::Scene& s, sim::ImmersedBoundary& ib, const std::string&
     }
   }
   csv.flush();
-  scene::write_checkpoint(checkpoint, s.source, ib);
+  io::write_checkpoint(checkpoint, s.source, ib);
   std::cout << (terminal ? "\n" : "") << "done: " << steps << " steps to t = " << ib.time() / units::us << " us in "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s; " << out
             << "/diagnostics.csv, " << checkpoint << std::endl;
@@ -238,25 +238,25 @@ int run(const scene::Scene& s, const std::string& out, double until) {
   std::cout << scene::describe(s) << "building the cell types and the solver ..." << std::endl;
   sim::ImmersedBoundary ib = scene::build(s);
   std::ofstream(out + "/diagnostics.csv") << csv_header(ib) << "\n";
-  std::unique_ptr<scene::SnapshotWriter> snapshots;
+  std::unique_ptr<io::SnapshotWriter> snapshots;
   if (s.snapshot_every > 0) {
-    snapshots = std::make_unique<scene::SnapshotWriter>(out, ib);
+    snapshots = std::make_unique<io::SnapshotWriter>(out, ib);
     snapshots->write(ib);  // t = 0
   }
   return advance(s, ib, out, until > 0 ? std::min(until, s.t_end) : s.t_end, snapshots.get());
 }
 
 int restart(const std::string& out, double until) {
-  const scene::Checkpoint k = scene::read_checkpoint(out + "/checkpoint.h5");
+  const io::Checkpoint k = io::read_checkpoint(out + "/checkpoint.h5");
   const scene::Scene s = scene::parse_scene(k.scene_yaml, out + "/checkpoint.h5");
   std::cout << scene::describe(s) << "restarting at step " << k.state.steps << ", t = " << k.state.fluid.t / units::us
             << " us; building the cell types and the solver ..." << std::endl;
   sim::ImmersedBoundary ib = scene::build(s);
   ib.restore(k.state);
   trim_csv(out + "/diagnostics.csv", k.state.steps);
-  std::unique_ptr<scene::SnapshotWriter> snapshots;
+  std::unique_ptr<io::SnapshotWriter> snapshots;
   if (s.snapshot_every > 0) {
-    snapshots = std::make_unique<scene::SnapshotWriter>(out, ib);
+    snapshots = std::make_unique<io::SnapshotWriter>(out, ib);
     snapshots->resume(ib.time());
   }
   return advance(s, ib, out, until > 0 ? until : s.t_end, snapshots.get());

@@ -32,7 +32,7 @@
 #include "capillary_run.hpp"
 #include "common/study.hpp"
 #include "rbfib/core/error.hpp"
-#include "rbfib/scene/hdf5.hpp"
+#include "rbfib/io/hdf5.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -410,7 +410,7 @@ const View* view_at(const Run& r, double t) {
 /// |force density|, H) and the capillary's nodes and triangles (its reference; it moves by less
 /// than the largest displacement in table runs).
 void write_snapshots(const std::string& dir, const std::string& label, const Run& run) {
-  namespace h5 = rbfib::scene::h5;
+  namespace h5 = rbfib::io::h5;
   std::filesystem::create_directories(dir);
   const std::vector<double>& Z = run.capillary_reference();
   const index_t nc = index_t(Z.size() / 3);

@@ -49,7 +49,7 @@
 // Each run (id <setup>_<orientation>, e.g. h0.2_c-d, recorded in results["runs"]) keeps
 // DIR/<setup>/<orientation>/ with its scene (scene.yaml, built by scene::parse_scene +
 // scene::build; `build/bin/rbfib run` reruns it) and its series (series.csv, outlines.csv,
-// shapes.csv). Full scale is resumable: a checkpoint (checkpoint.h5, scene/checkpoint.hpp) every
+// shapes.csv). Full scale is resumable: a checkpoint (checkpoint.h5, io/checkpoint.hpp) every
 // 1000 steps at h = 0.5 um and 200 at h = 0.2 um and at the end of a sitting (RBFIB_SITTING_SECONDS
 // of wall time, st::Sitting), and status.txt once the run has ended; running the same command
 // again continues each unfinished run from its checkpoint. Quick scale always starts afresh.
@@ -62,7 +62,7 @@
 #include "rbfib/cells/shapes.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
-#include "rbfib/scene/checkpoint.hpp"
+#include "rbfib/io/checkpoint.hpp"
 #include "rbfib/scene/scene.hpp"
 #include "rbfib/sim/ib_step.hpp"
 #include "rbfib/surface/contact.hpp"
@@ -506,7 +506,7 @@ RunResult run(const Orientation& o, const Setup& s, double figure_time, const st
   // The sitting's wall time is spent: how far earlier sittings took the run, without building it.
   if (resumable && sitting.remaining() <= 0) {
     if (std::filesystem::exists(checkpoint)) {
-      r.steps = scene::read_checkpoint(checkpoint).state.steps;
+      r.steps = io::read_checkpoint(checkpoint).state.steps;
       read_back(dir, r.steps, r);
       for (const Sample& m : r.series) r.seconds += m.seconds;
       r.t = r.series.empty() ? 0 : r.series.back().t;
@@ -526,7 +526,7 @@ RunResult run(const Orientation& o, const Setup& s, double figure_time, const st
     r.shapes.push_back({ib.time(), moment, shapes(at)});
   };
   if (resumable && std::filesystem::exists(checkpoint)) {
-    const scene::Checkpoint k = scene::read_checkpoint(checkpoint);
+    const io::Checkpoint k = io::read_checkpoint(checkpoint);
     if (k.scene_yaml != text) throw InputError(checkpoint, "its scene", "differs from this driver's scene for " + o.id + ": remove " + dir + " to start afresh");
     ib.restore(k.state);
     read_back(dir, ib.step_count(), r);
@@ -599,7 +599,7 @@ RunResult run(const Orientation& o, const Setup& s, double figure_time, const st
       t_last = std::chrono::steady_clock::now();  // the measurement is not the step's time
     }
     if (resumable && n % s.checkpoint_every == 0) {
-      scene::write_checkpoint(checkpoint, text, ib);
+      io::write_checkpoint(checkpoint, text, ib);
       t_last = std::chrono::steady_clock::now();
     }
   }
@@ -610,7 +610,7 @@ RunResult run(const Orientation& o, const Setup& s, double figure_time, const st
   r.t = ib.time();
   if (r.ended()) record_state(at, "end");
   if (resumable) {
-    scene::write_checkpoint(checkpoint, text, ib);
+    io::write_checkpoint(checkpoint, text, ib);
     if (r.ended()) {
       std::ofstream f(status);
       f.precision(17);

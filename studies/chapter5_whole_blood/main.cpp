@@ -40,8 +40,8 @@
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
-#include "rbfib/scene/checkpoint.hpp"
-#include "rbfib/scene/snapshot.hpp"
+#include "rbfib/io/checkpoint.hpp"
+#include "rbfib/io/snapshot.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -155,7 +155,7 @@ std::vector<double> velocity_profile(const sim::ImmersedBoundary& ib) {
 
 /// The starting state of a run: the init's fluid, red cells (when kept) and endothelium, with the
 /// run's platelets (the last batch of the freshly built step) added.
-void start_from(sim::ImmersedBoundary& ib, const scene::Checkpoint& start, bool with_red_cells) {
+void start_from(sim::ImmersedBoundary& ib, const io::Checkpoint& start, bool with_red_cells) {
   sim::ImmersedBoundary::Carried c = ib.carried();
   const dvec platelets = c.batches.back();
   c.fluid = start.state.fluid;
@@ -463,7 +463,7 @@ int main(int argc, char** argv) {
       const std::string start_file = opt.out_dir + "/start_" + w.name + "_";
       ih.after_step = [&](const sim::ImmersedBoundary& ib) {
         for (std::size_t k = 0; k < starts.size(); ++k)
-          if (ib.step_count() == start_steps[k]) scene::write_checkpoint(start_file + to_text(k) + ".h5", init_text, ib);
+          if (ib.step_count() == start_steps[k]) io::write_checkpoint(start_file + to_text(k) + ".h5", init_text, ib);
       };
       ih.at_start = [&](const sim::ImmersedBoundary& ib) { v_ref = ib.batch(0).type().reference_volume() / std::pow(um, 3); };
       // A sitting's budget is shared by the walls' init runs still to come.
@@ -491,7 +491,7 @@ int main(int argc, char** argv) {
 
       // ---- runs from each starting state -------------------------------------------------------
       for (std::size_t k = 0; k < starts.size(); ++k) {
-        const scene::Checkpoint start = scene::read_checkpoint(start_file + to_text(k) + ".h5");
+        const io::Checkpoint start = io::read_checkpoint(start_file + to_text(k) + ".h5");
         const index_t nr = rbc.n;
         std::vector<double> red = host(start.state.batches.at(0));
         red.resize(std::size_t(3 * red_cell_count * nr));  // X, the first 3N columns of the n x 6N state
@@ -517,12 +517,12 @@ int main(int argc, char** argv) {
           h.prepare = [&](sim::ImmersedBoundary& ib) { start_from(ib, start, with_red); };
           h.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample_run(ib, with_red, box, tracked).row(); };
           // Snapshots for ParaView (the first starting state's runs): at the start, every tenth of the run, at the end.
-          std::unique_ptr<scene::SnapshotWriter> writer;
+          std::unique_ptr<io::SnapshotWriter> writer;
           const long snapshot_every = std::max(1L, std::lround(run_window / s.dt) / 10);
           if (k == 0)
             h.after_step = [&](const sim::ImmersedBoundary& ib) {
               if (!writer) {
-                writer = std::make_unique<scene::SnapshotWriter>(opt.out_dir + "/snapshots_" + tag, ib);
+                writer = std::make_unique<io::SnapshotWriter>(opt.out_dir + "/snapshots_" + tag, ib);
                 writer->resume(ib.time());
               }
               if ((ib.step_count() - start.state.steps) % snapshot_every == 0) writer->write(ib);

@@ -2,7 +2,7 @@
 
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
-#include "rbfib/scene/checkpoint.hpp"
+#include "rbfib/io/checkpoint.hpp"
 #include "rbfib/scene/scene.hpp"
 
 #include <chrono>
@@ -67,7 +67,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   const std::string ckpt = opt.out_dir + "/checkpoint_" + tag + ".h5", samples = opt.out_dir + "/samples_" + tag + ".txt",
                     stopped = opt.out_dir + "/stopped_" + tag + ".txt";
   if (resumable && std::filesystem::exists(ckpt)) {
-    scene::Checkpoint c = scene::read_checkpoint(ckpt);
+    io::Checkpoint c = io::read_checkpoint(ckpt);
     if (c.scene_yaml == text) {
       ib.restore(c.state);
       r.samples = load_rows(samples, ib.time());
@@ -104,7 +104,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
         last_log = now;
       }
       if (resumable && std::chrono::duration<double>(now - last_save).count() > 300) {
-        scene::write_checkpoint(ckpt, text, ib);
+        io::write_checkpoint(ckpt, text, ib);
         save_rows(samples, r.samples);
         last_save = now;
       }
@@ -117,7 +117,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   r.steps = ib.step_count();
   r.finished = !r.stopped.empty() || r.steps >= total;
   if (resumable) {  // the end, or the last good state before a failure
-    scene::write_checkpoint(ckpt, text, ib);
+    io::write_checkpoint(ckpt, text, ib);
     save_rows(samples, r.samples);
     if (!r.stopped.empty()) std::ofstream(stopped) << r.stopped << "\n";
   }

@@ -2,7 +2,7 @@
 // Runs one scene for a study: built from its YAML text (kept beside the results, where `rbfib run`
 // reruns it), stepped to the scene's end time, sampled every few steps, progress logged every 30 s;
 // a numerical failure (eq. 5.4, a degenerate cell) ends the run early and is reported, not thrown.
-// Resumable runs (full scale) write DIR/checkpoint_<tag>.h5 (scene/checkpoint.hpp) and their
+// Resumable runs (full scale) write DIR/checkpoint_<tag>.h5 (io/checkpoint.hpp) and their
 // samples (DIR/samples_<tag>.txt, one row of numbers per line) every five minutes of wall time and
 // at the end, and continue from them when started again with the same scene text; a run stopped by
 // a numerical failure keeps its last good state and the message (DIR/stopped_<tag>.txt) and is not

@@ -6,7 +6,7 @@
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/linalg/blas.hpp"
-#include "rbfib/scene/checkpoint.hpp"
+#include "rbfib/io/checkpoint.hpp"
 #include "rbfib/scene/scene.hpp"
 
 #include <gtest/gtest.h>
@@ -18,6 +18,9 @@
 
 namespace rbfib::scene {
 namespace {
+using io::Checkpoint;
+using io::read_checkpoint;
+using io::write_checkpoint;
 
 const char* sphere_scene = R"(
 name: relaxing_sphere

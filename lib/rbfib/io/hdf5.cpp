@@ -1,4 +1,4 @@
-#include "rbfib/scene/hdf5.hpp"
+#include "rbfib/io/hdf5.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-namespace rbfib::scene::h5 {
+namespace rbfib::io::h5 {
 
 namespace {
 void check(herr_t status, const std::string& what) {
@@ -90,4 +90,4 @@ void replace(const std::string& tmp, const std::string& path) {
   fsync_path(dir.empty() ? "." : dir, O_RDONLY | O_DIRECTORY);
 }
 
-}  // namespace rbfib::scene::h5
+}  // namespace rbfib::io::h5

@@ -16,7 +16,7 @@
 
 #include <string>
 
-namespace rbfib::scene {
+namespace rbfib::io {
 
 void write_checkpoint(const std::string& path, const std::string& scene_yaml, const sim::ImmersedBoundary& ib);
 
@@ -28,4 +28,4 @@ struct Checkpoint {
 /// Reads a checkpoint; throws InputError naming the file and what is missing or malformed.
 Checkpoint read_checkpoint(const std::string& path);
 
-}  // namespace rbfib::scene
+}  // namespace rbfib::io

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace rbfib::scene::h5 {
+namespace rbfib::io::h5 {
 
 /// An HDF5 identifier closed on scope exit.
 class Id {
@@ -52,4 +52,4 @@ void flush_and_sync(hid_t file, const std::string& path);
 /// Renames tmp over path and fsyncs the directory: the atomic replacement of a file.
 void replace(const std::string& tmp, const std::string& path);
 
-}  // namespace rbfib::scene::h5
+}  // namespace rbfib::io::h5

@@ -1,14 +1,14 @@
-#include "rbfib/scene/checkpoint.hpp"
+#include "rbfib/io/checkpoint.hpp"
 
 #include "rbfib/core/error.hpp"
-#include "rbfib/scene/hdf5.hpp"
+#include "rbfib/io/hdf5.hpp"
 
 #include <hdf5.h>
 
 #include <filesystem>
 #include <vector>
 
-namespace rbfib::scene {
+namespace rbfib::io {
 
 namespace {
 
@@ -136,4 +136,4 @@ Checkpoint read_checkpoint(const std::string& path) {
   return k;
 }
 
-}  // namespace rbfib::scene
+}  // namespace rbfib::io

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace rbfib::scene {
+namespace rbfib::io {
 
 class SnapshotWriter {
  public:
@@ -49,4 +49,4 @@ class SnapshotWriter {
   std::vector<index_t> batch_points_, batch_triangles_, point_counts_;
 };
 
-}  // namespace rbfib::scene
+}  // namespace rbfib::io

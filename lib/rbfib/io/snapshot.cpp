@@ -1,6 +1,6 @@
-#include "rbfib/scene/snapshot.hpp"
+#include "rbfib/io/snapshot.hpp"
 
-#include "rbfib/scene/hdf5.hpp"
+#include "rbfib/io/hdf5.hpp"
 #include "rbfib/surface/geometry.hpp"
 #include "rbfib/surface/geometry_kernels.hpp"
 #include "rbfib/surface/triangulation.hpp"
@@ -13,7 +13,7 @@
 #include <regex>
 #include <sstream>
 
-namespace rbfib::scene {
+namespace rbfib::io {
 
 namespace {
 
@@ -220,4 +220,4 @@ void SnapshotWriter::write_xdmf() const {
   std::filesystem::rename(tmp, path);
 }
 
-}  // namespace rbfib::scene
+}  // namespace rbfib::io
