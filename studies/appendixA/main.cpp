@@ -86,7 +86,7 @@ TableRun run_table_problem(int N, bool dirichlet, Correction corr, double dt, in
       }
     }
   });
-  if (!blas::all_finite(u)) throw NumericalError("appendixA: non-finite solution at N = " + std::to_string(N));
+  if (!blas::all_finite(u)) throw NumericalError(Cause::non_finite, "appendixA: non-finite solution at N = " + std::to_string(N));
   run.err = error_norms(box, u, u0);
   return run;
 }

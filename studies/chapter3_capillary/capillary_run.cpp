@@ -360,9 +360,9 @@ struct Run::Impl {
         U.resize(static_cast<std::size_t>(3 * n_cell));
         ib.interpolate(at_eval, u, ptr(U));
       }
-      if (!blas::all_finite(U)) throw NumericalError("non-finite velocity at the cell's sites");
+      if (!blas::all_finite(U)) throw NumericalError(Cause::non_finite, "non-finite velocity at the cell's sites");
     }
-    if (!blas::all_finite(Ucap_d)) throw NumericalError("non-finite velocity at the capillary nodes");
+    if (!blas::all_finite(Ucap_d)) throw NumericalError(Cause::non_finite, "non-finite velocity at the capillary nodes");
     phases.interpolate += since(t0);
     // 6. eqs. (94)-(95) and the cell's update
     t0 = clock_type::now();

@@ -188,7 +188,7 @@ RelaxationResult relax_shvd_at_site(const RelaxationSpec& spec, const Evaluation
       ib.sort(Xm, m, at_interp);
       U.resize(static_cast<std::size_t>(3 * m));
       ib.interpolate(at_interp, u, ptr(U));
-      if (!blas::all_finite(U)) throw NumericalError("SHVD: non-finite interpolated velocity at step " + to_text(k));
+      if (!blas::all_finite(U)) throw NumericalError(Cause::non_finite, "SHVD: non-finite interpolated velocity at step " + to_text(k));
       forward_euler(Xm, ptr(U), spec.dt, 3 * m);  // step 6, eq. (87)
       r.steps = k + 1;
     } catch (const NumericalError& err) {

@@ -127,7 +127,7 @@ EvalSet make_eval_set(const std::string& points, index_t n) {
       throw InputError(file, to_text(e.sites.size()) + " sites", "expected (N+1)^2 = " + to_text(n));
     const NnlsWeights q = nnls_sh_weights(e.sites, N);
     if (!(q.residual < 1e-10))
-      throw NumericalError("eq. (45) weights on " + file + ": NNLS residual " + to_text(q.residual) +
+      throw NumericalError(Cause::solver, "eq. (45) weights on " + file + ": NNLS residual " + to_text(q.residual) +
                            " (the square system has no nonnegative solution)");
     e.w = q.w;
     e.eq45_residual = q.residual;

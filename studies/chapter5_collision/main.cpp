@@ -575,7 +575,7 @@ RunResult run(const Orientation& o, const Setup& s, double figure_time, const st
       rep = ib.step();
     } catch (const NumericalError& e) {
       r.message = e.what();
-      r.status = r.message.find("eq. 5.4") != std::string::npos ? "eq. 5.4" : "stopped";
+      r.status = e.cause() == Cause::stopping_condition ? "eq. 5.4" : "stopped";
       st::log(opt, s.label + " " + o.id + ": stopped at step " + to_text(ib.step_count() + 1) + ", t = " + fmt(ib.time() / units::us) + " us: " + r.message);
       break;
     }

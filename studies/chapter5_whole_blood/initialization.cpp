@@ -210,7 +210,7 @@ PlateletPlacement place_platelets(const ReferenceSites& platelet, const Domain& 
   int attempts = 0;          // platelet points drawn for the platelet being placed
   for (int endothelium_draws = 0; int(P.platelets.size()) < count; ++endothelium_draws) {
     if (endothelium_draws > spec.max_draws)
-      throw NumericalError("placing platelet " + std::to_string(P.platelets.size()) + ": no endothelium point found in " +
+      throw NumericalError(Cause::solver, "placing platelet " + std::to_string(P.platelets.size()) + ": no endothelium point found in " +
                            std::to_string(spec.max_draws) + " draws");
     // An endothelium point far enough from those already taken (periodic in x and z).
     const index_t k = endo(rng);
@@ -227,7 +227,7 @@ PlateletPlacement place_platelets(const ReferenceSites& platelet, const Domain& 
     bool placed = false;
     for (int tries = 0; tries < 20 && !placed; ++tries) {
       if (++P.draws > spec.max_draws)
-        throw NumericalError("placing platelet " + std::to_string(P.platelets.size()) + ": no placement in " +
+        throw NumericalError(Cause::solver, "placing platelet " + std::to_string(P.platelets.size()) + ": no placement in " +
                              std::to_string(spec.max_draws) + " draws (the space between the endothelium and the red cells is too small)");
       ++attempts;
       const index_t i = site(rng);

@@ -471,7 +471,7 @@ int main(int argc, char** argv) {
       st::record_run(results, "init_" + w.name, init.progress(starts.back()));
       const long init_needed = std::lround(starts.back() / s.dt);
       add_cost("init " + w.name, double(init.steps), double(init_needed), init.seconds_per_step());
-      if (!init.stopped.empty()) throw NumericalError("the init run (" + w.name + ") stopped: " + init.stopped);
+      if (!init.stopped.empty()) throw NumericalError(Cause::solver, "the init run (" + w.name + ") stopped: " + init.stopped);
       for (const auto& r : init.samples) closest_red = std::min(closest_red, r[2] / s.h);
       if (!init.finished) {
         inits_done = red_runs_done = false;
@@ -540,7 +540,7 @@ int main(int argc, char** argv) {
             if (with_red && w.bump == 0) flat_runs_done = false;
             continue;
           }
-          if (!run.stopped.empty()) throw NumericalError("run " + tag + " stopped: " + run.stopped);
+          if (!run.stopped.empty()) throw NumericalError(Cause::solver, "run " + tag + " stopped: " + run.stopped);
 
           // ---- analysis of the run ----------------------------------------------------------------
           std::vector<RunSample> rows;

@@ -127,7 +127,7 @@ double force_integral(const std::vector<double>& F) {
 }
 
 void require_finite(const dvec& U, const std::string& who, int step) {
-  if (!blas::all_finite(U)) throw NumericalError(who + ": non-finite interpolated velocity at step " + to_text(step));
+  if (!blas::all_finite(U)) throw NumericalError(Cause::non_finite, who + ": non-finite interpolated velocity at step " + to_text(step));
 }
 }  // namespace
 
@@ -142,7 +142,7 @@ EvaluationSet make_evaluation_set(index_t n) {
   // Site j = (n + 1)/2 (1-based) has latitude asin(0) = 0 and longitude mod(pi, 2 pi) - pi = 0.
   e.axis_site = (n + 1) / 2 - 1;
   if (e.sites.lambda[e.axis_site] != 0.0 || e.sites.theta[e.axis_site] != 0.0)
-    throw NumericalError("Bauer spiral of " + to_text(n) + " sites: site " + to_text(e.axis_site) +
+    throw NumericalError(Cause::solver, "Bauer spiral of " + to_text(n) + " sites: site " + to_text(e.axis_site) +
                          " is not at (lambda, theta) = (0, 0)");
   const surface::RbfWeights q = surface::rbf_sphere_weights(e.sites, 3);
   e.w = q.w;
@@ -167,7 +167,7 @@ EvaluationSet make_md_evaluation_set(const std::string& file, int N) {
           "must be (N+1)^2 = " + to_text((N + 1) * (N + 1)));
   const surface::NnlsWeights q = surface::nnls_sh_weights(e.sites, N);
   if (!(q.residual < 1e-10))
-    throw NumericalError("eq. (45) weights on " + file + ": NNLS residual " + to_text(q.residual));
+    throw NumericalError(Cause::solver, "eq. (45) weights on " + file + ": NNLS residual " + to_text(q.residual));
   e.w = q.w;
   e.eq45_residual = q.residual;
   e.tris = surface::sphere_triangulation(e.sites);
@@ -194,7 +194,7 @@ EvaluationSet make_md_evaluation_set(const std::string& file, int N) {
       break;
     }
   }
-  if (!found) throw NumericalError(file + ": no triangle meets the ray of (1, 0, 0)");
+  if (!found) throw NumericalError(Cause::solver, file + ": no triangle meets the ray of (1, 0, 0)");
   e.seconds = since(t0);
   return e;
 }

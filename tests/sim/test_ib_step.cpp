@@ -214,6 +214,12 @@ TEST(IbStep, APlantedNanStopsTheStepNamingTheCellAndKeepsTheState) {
   EXPECT_NE(m.find("step 1"), std::string::npos) << m;
   EXPECT_NE(m.find("cell 1"), std::string::npos) << m;
   EXPECT_NE(m.find("data site 7"), std::string::npos) << m;
+  try {
+    ib.step();
+    ADD_FAILURE() << "no error on the second try";
+  } catch (const NumericalError& e) {
+    EXPECT_EQ(e.cause(), Cause::non_finite) << to_string(e.cause());
+  }
   EXPECT_EQ(ib.step_count(), 1);
   EXPECT_EQ(max_abs_diff(ib.fluid_state().u[0], u_before), 0.0);
   const host_vector<double> h0 = before, h1 = ib.batch(0).state().storage();
@@ -238,6 +244,13 @@ TEST(IbStep, TheStoppingConditionFiresWithItsNumbersAndKeepsTheState) {
   EXPECT_NE(m.find("eq. 5.4"), std::string::npos) << m;
   EXPECT_NE(m.find("||f||_inf = "), std::string::npos) << m;
   EXPECT_NE(m.find("t = 0 s"), std::string::npos) << m;
+  // The cause travels with the error, through the step's own wrapping of it.
+  try {
+    ib.step();
+    ADD_FAILURE() << "no error on the second try";
+  } catch (const NumericalError& e) {
+    EXPECT_EQ(e.cause(), Cause::stopping_condition) << to_string(e.cause());
+  }
   EXPECT_EQ(max_abs_diff(ib.batch(0).state().storage(), before), 0.0);
   EXPECT_EQ(ib.time(), 0.0);
 }
@@ -308,6 +321,12 @@ TEST(IbStep, TheAdaptiveStepStopsWhenEvenItsSmallestStepViolatesTheBound) {
   const std::string m = testing::message_of<NumericalError>([&] { ib.step(); });
   EXPECT_NE(m.find("eq. 5.4"), std::string::npos) << m;
   EXPECT_NE(m.find("dt_min = 0.001 s"), std::string::npos) << m;
+  try {
+    ib.step();
+    ADD_FAILURE() << "no error on the second try";
+  } catch (const NumericalError& e) {
+    EXPECT_EQ(e.cause(), Cause::stopping_condition) << to_string(e.cause());
+  }
   EXPECT_EQ(max_abs_diff(ib.batch(0).state().storage(), before), 0.0);
   EXPECT_EQ(ib.time(), 0.0);
   // A first dt that is not 2^k dt_min is bad input naming the field.

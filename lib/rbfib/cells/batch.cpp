@@ -34,6 +34,16 @@ const char* status_text(int s) {
   return "unknown failure";
 }
 
+Cause status_cause(int s) {
+  switch (s) {
+    case mechanics::force_degenerate_metric: return Cause::degenerate_site;
+    case site_degenerate_data: return Cause::degenerate_site;
+    case mechanics::force_bad_energy: return Cause::inverted_cell;
+    case site_non_finite: return Cause::non_finite;
+  }
+  return Cause::solver;
+}
+
 RBFIB_HD inline bool finite(double v) { return (v - v) == 0.0; }
 
 /// Number of per-site contributions reduced per cell.
@@ -45,7 +55,7 @@ void raise_first_bad(const device_vector<int>& status, index_t per_cell, const s
   if (it == status.end()) return;
   const index_t k = it - status.begin();
   const int s = *it;
-  throw NumericalError("cell type '" + type + "', cell " + to_text(k / per_cell) + ": " + status_text(s) + " at " +
+  throw NumericalError(status_cause(s), "cell type '" + type + "', cell " + to_text(k / per_cell) + ": " + status_text(s) + " at " +
                        where + " site " + to_text(k % per_cell));
 }
 
@@ -265,7 +275,7 @@ void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings) 
   out.energy = 0;
   for (index_t c = 0; c < N; ++c) {
     if (!(cd.volume[c] > 0))
-      throw NumericalError("cell type '" + name + "', cell " + to_text(c) + ": enclosed volume " + to_text(cd.volume[c]) +
+      throw NumericalError(Cause::inverted_cell, "cell type '" + name + "', cell " + to_text(c) + ": enclosed volume " + to_text(cd.volume[c]) +
                            " cm^3 <= 0 (the surface is turned inside out)");
     out.energy += cd.energy[c];
     for (int d = 0; d < 3; ++d) cd.centroid[c][d] = s[(4 + d) * N + c] / cd.volume[c];

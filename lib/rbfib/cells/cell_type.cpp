@@ -85,7 +85,7 @@ CellType::CellType(CellTypeSpec spec) : spec_(std::move(spec)) {
   for (index_t i = 0; i < ns; ++i) {
     const surface::PointGeometry g = surface::point_geometry(Z[i]);
     if (!(g.det_g > 0))
-      throw NumericalError("cell type '" + nm + "': reference surface degenerate at sample site " + to_text(i) +
+      throw NumericalError(Cause::degenerate_site, "cell type '" + nm + "': reference surface degenerate at sample site " + to_text(i) +
                            " (det G0 = " + to_text(g.det_g) + ")");
     det0[i] = g.det_g;
     x_dot_n[i] = surface::dot3(Z[i].x, g.n);

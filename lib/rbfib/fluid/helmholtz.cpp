@@ -52,7 +52,7 @@ HelmholtzSolver::HelmholtzSolver(const Box& box, double c, HelmholtzOptions opti
   // Appendix A: H is SPD when every 1 - eps > 0; Gershgorin's lower bound is then positive too,
   // since the rows are weakly diagonally dominant with a positive identity part.
   if (!(b.lambda_min > 0.0))
-    throw NumericalError(name + ": Gershgorin lower bound " + to_text(b.lambda_min) +
+    throw NumericalError(Cause::solver, name + ": Gershgorin lower bound " + to_text(b.lambda_min) +
                          " <= 0 for the Helmholtz operator (limit: > 0)");
   cheb_ = ChebyshevIteration(b, options_.chebyshev_steps, name + ".chebyshev");
 }

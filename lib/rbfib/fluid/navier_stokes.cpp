@@ -263,7 +263,7 @@ StepStats NavierStokesSolver::step(FluidState& state, const VectorField* f) {
   state.t = t + dt;
   for (int a = 0; a < grid_.dims; ++a)
     if (!blas::all_finite(state.u[a]))
-      throw NumericalError("fluid step at t = " + to_text(t) + ": velocity component " + std::to_string(a) +
+      throw NumericalError(Cause::non_finite, "fluid step at t = " + to_text(t) + ": velocity component " + std::to_string(a) +
                            " is not finite (NaN or Inf); limit: finite values");
   auto t0 = clock_type::now();
   stats.max_divergence = max_divergence(state);

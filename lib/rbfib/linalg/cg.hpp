@@ -34,7 +34,7 @@ SolveStats conjugate_gradient(const Op& A, const dvec& b, dvec& x, const SolverO
   require(opt.rtol > 0.0, opt.name + ".rtol", opt.rtol, "must be positive");
   require(opt.max_iterations > 0, opt.name + ".max_iterations", opt.max_iterations, "must be positive");
   const double bnorm = blas::norm2(b);
-  if (!std::isfinite(bnorm)) throw NumericalError(opt.name + ": right-hand side is not finite (NaN or Inf)");
+  if (!std::isfinite(bnorm)) throw NumericalError(Cause::non_finite, opt.name + ": right-hand side is not finite (NaN or Inf)");
   SolveStats stats;
   if (bnorm == 0.0) {
     thrust::fill(x.begin(), x.end(), 0.0);
@@ -54,7 +54,7 @@ SolveStats conjugate_gradient(const Op& A, const dvec& b, dvec& x, const SolverO
     A(p, q);
     const double pq = blas::dot(p, q);
     if (!(pq > 0.0))
-      throw NumericalError(opt.name + ": p^T A p = " + to_text(pq) + " at iteration " + std::to_string(it) +
+      throw NumericalError(std::isfinite(pq) ? Cause::solver : Cause::non_finite, opt.name + ": p^T A p = " + to_text(pq) + " at iteration " + std::to_string(it) +
                            " (operator not positive definite, or NaN)");
     const double step = rz / pq;
     blas::axpy(step, p, x);
@@ -62,14 +62,14 @@ SolveStats conjugate_gradient(const Op& A, const dvec& b, dvec& x, const SolverO
     rnorm = blas::norm2(r);
     stats.iterations = it;
     stats.relative_residual = rnorm / bnorm;
-    if (!std::isfinite(rnorm)) throw NumericalError(opt.name + ": residual became NaN/Inf at iteration " + std::to_string(it));
+    if (!std::isfinite(rnorm)) throw NumericalError(Cause::non_finite, opt.name + ": residual became NaN/Inf at iteration " + std::to_string(it));
     if (stats.relative_residual <= opt.rtol) return stats;
     M(r, z);
     const double rz_new = blas::dot(r, z);
     blas::xpby(z, rz_new / rz, p);  // p = z + (rz_new / rz) p
     rz = rz_new;
   }
-  throw NumericalError(opt.name + ": did not converge in " + std::to_string(opt.max_iterations) +
+  throw NumericalError(Cause::solver, opt.name + ": did not converge in " + std::to_string(opt.max_iterations) +
                        " iterations (relative residual " + to_text(stats.relative_residual) + ", tolerance " +
                        to_text(opt.rtol) + ")");
 }

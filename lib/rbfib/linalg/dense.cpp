@@ -66,13 +66,13 @@ void check_gemm(Op op_a, Op op_b, const ConstMatrixView& A, const ConstMatrixVie
 
 #if defined(RBFIB_BACKEND_CUDA)
 void cuda_check(cudaError_t e, const char* what) {
-  if (e != cudaSuccess) throw NumericalError(std::string(what) + ": " + cudaGetErrorString(e));
+  if (e != cudaSuccess) throw NumericalError(Cause::solver, std::string(what) + ": " + cudaGetErrorString(e));
 }
 void cublas_check(cublasStatus_t s, const char* what) {
-  if (s != CUBLAS_STATUS_SUCCESS) throw NumericalError(std::string(what) + ": cuBLAS status " + to_text(int(s)));
+  if (s != CUBLAS_STATUS_SUCCESS) throw NumericalError(Cause::solver, std::string(what) + ": cuBLAS status " + to_text(int(s)));
 }
 void cusolver_check(cusolverStatus_t s, const char* what) {
-  if (s != CUSOLVER_STATUS_SUCCESS) throw NumericalError(std::string(what) + ": cuSOLVER status " + to_text(int(s)));
+  if (s != CUSOLVER_STATUS_SUCCESS) throw NumericalError(Cause::solver, std::string(what) + ": cuSOLVER status " + to_text(int(s)));
 }
 cublasHandle_t cublas() {
   static cublasHandle_t h = [] {
@@ -146,7 +146,7 @@ LuFactors lu_factor(const DeviceMatrix& A, const char* what) {
   dgetrf_(&n, &n, ptr(f.lu.storage()), &n, ptr(f.ipiv), &info);
 #endif
   if (info != 0)
-    throw NumericalError(std::string(what) + ": LU factorization failed (getrf info = " + to_text(info) +
+    throw NumericalError(Cause::solver, std::string(what) + ": LU factorization failed (getrf info = " + to_text(info) +
                          (info > 0 ? ", U is exactly singular)" : ")"));
   return f;
 }
@@ -186,7 +186,7 @@ void lu_solve(const LuFactors& f, Op op, MatrixView B) {
   const char trans = op == Op::none ? 'N' : 'T';
   dgetrs_(&trans, &n, &nrhs, ptr(f.lu.storage()), &n, ptr(f.ipiv), B.data, &ldb, &info, 1);
 #endif
-  if (info != 0) throw NumericalError("LU solve (getrs): info = " + to_text(info));
+  if (info != 0) throw NumericalError(Cause::solver, "LU solve (getrs): info = " + to_text(info));
 }
 
 double lu_rcond(const LuFactors& f, double norm1) {

@@ -38,7 +38,7 @@ int batched_axes(std::array<int, 3> n, std::array<bool, 3> t, int* which) {
 }
 
 void cufft_check(cufftResult r, const char* what) {
-  if (r != CUFFT_SUCCESS) throw NumericalError(std::string(what) + ": cuFFT error " + std::to_string(int(r)));
+  if (r != CUFFT_SUCCESS) throw NumericalError(Cause::solver, std::string(what) + ": cuFFT error " + std::to_string(int(r)));
 }
 #else
 std::once_flag fftw_threads_once;
@@ -110,7 +110,7 @@ FourierTransform::FourierTransform(std::array<int, 3> n, std::array<bool, 3> tra
   for (int sign : {FFTW_FORWARD, FFTW_BACKWARD}) {
     fftw_plan p = fftw_plan_guru64_dft(int(dims.size()), dims.data(), int(loops.size()), loops.data(), scratch.data(),
                                        scratch.data(), sign, FFTW_ESTIMATE | FFTW_UNALIGNED);
-    if (!p) throw NumericalError("FFTW could not plan a transform over " + axes_text(n, transform));
+    if (!p) throw NumericalError(Cause::solver, "FFTW could not plan a transform over " + axes_text(n, transform));
     (sign == FFTW_FORWARD ? forward_ : backward_) = p;
   }
 #endif

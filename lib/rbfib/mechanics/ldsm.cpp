@@ -46,13 +46,13 @@ LdsmResult ldsm_forces(const std::string& cell, const std::vector<surface::Trian
     const double det = G[0][0] * G[1][1] - G[0][1] * G[1][0];
     const double det0 = G0[0][0] * G0[1][1] - G0[0][1] * G0[1][0];
     if (!(det > 0) || !(det0 > 0))
-      throw NumericalError("cell '" + cell + "': LDSM triangle " + to_text(t) + " is degenerate (det G = " +
+      throw NumericalError(Cause::degenerate_site, "cell '" + cell + "': LDSM triangle " + to_text(t) + " is degenerate (det G = " +
                            to_text(det) + ", det G0 = " + to_text(det0) + ", both must be > 0)");
     double n[3], n0[3];
     surface::cross3(u[0], u[1], n);
     surface::cross3(u0[0], u0[1], n0);
     if (!(surface::dot3(n, n0) > 0))
-      throw NumericalError("cell '" + cell + "': LDSM triangle " + to_text(t) + " is inverted");
+      throw NumericalError(Cause::inverted_cell, "cell '" + cell + "': LDSM triangle " + to_text(t) + " is inverted");
     double Gi[2][2], G0i[2][2];
     inverse2(G, det, Gi);
     inverse2(G0, det0, G0i);
@@ -61,7 +61,7 @@ LdsmResult ldsm_forces(const std::string& cell, const std::vector<surface::Trian
     for (const EnergyDensity& e : energies) {
       const InvariantDerivatives we = e.evaluate(trace_ab(G, G0i) - 2, J2 - 1);
       if (!we.valid)
-        throw NumericalError("cell '" + cell + "': LDSM triangle " + to_text(t) + ": energy undefined (det C <= 0)");
+        throw NumericalError(Cause::inverted_cell, "cell '" + cell + "': LDSM triangle " + to_text(t) + ": energy undefined (det C <= 0)");
       w.W += we.W, w.W1 += we.W1, w.W2 += we.W2;
     }
     const double A0 = 0.5 * std::sqrt(det0);
@@ -79,7 +79,7 @@ LdsmResult ldsm_forces(const std::string& cell, const std::vector<surface::Trian
     }
   }
   for (double f : r.F)
-    if (!std::isfinite(f)) throw NumericalError("cell '" + cell + "': non-finite LDSM force");
+    if (!std::isfinite(f)) throw NumericalError(Cause::non_finite, "cell '" + cell + "': non-finite LDSM force");
   return r;
 }
 

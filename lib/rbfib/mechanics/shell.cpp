@@ -9,15 +9,16 @@ namespace rbfib::mechanics {
 namespace {
 void check_status(const std::string& cell, std::size_t i, const ForceAtSite& r) {
   const char* why = nullptr;
+  Cause cause = Cause::solver;
   switch (r.status) {
-    case force_degenerate_metric: why = "degenerate surface metric (det G <= 0 or det G0 <= 0)"; break;
-    case force_bad_energy: why = "energy density undefined (det C <= 0)"; break;
+    case force_degenerate_metric: why = "degenerate surface metric (det G <= 0 or det G0 <= 0)", cause = Cause::degenerate_site; break;
+    case force_bad_energy: why = "energy density undefined (det C <= 0)", cause = Cause::inverted_cell; break;
     default: break;
   }
-  if (why) throw NumericalError("cell '" + cell + "': " + why + " at sample site " + to_text(i));
+  if (why) throw NumericalError(cause, "cell '" + cell + "': " + why + " at sample site " + to_text(i));
   for (int d = 0; d < 3; ++d)
     if (!std::isfinite(r.F[d]))
-      throw NumericalError("cell '" + cell + "': non-finite force density at sample site " + to_text(i) +
+      throw NumericalError(Cause::non_finite, "cell '" + cell + "': non-finite force density at sample site " + to_text(i) +
                            " (I1 = " + to_text(r.I1) + ", I2 = " + to_text(r.I2) + ")");
 }
 void require_same(const std::string& cell, std::size_t a, std::size_t b, const char* what) {
@@ -99,7 +100,7 @@ std::vector<double> bending_force_density(const std::string& cell, const surface
   for (std::size_t i = 0; i < n; ++i) {
     const surface::PointGeometry g0 = surface::point_geometry(Z[i]);
     if (!(g0.det_g > 0))
-      throw NumericalError("cell '" + cell + "': reference metric degenerate at sample site " + to_text(i));
+      throw NumericalError(Cause::degenerate_site, "cell '" + cell + "': reference metric degenerate at sample site " + to_text(i));
     const double lap = surface::laplace_beltrami(Xs[i], dHs[i]);  // lap_s (H - H')
     double f[3];
     bending_force_density(gs[i], g0.det_g, lap, model.kappa, H0s[i].u, f);
@@ -112,7 +113,7 @@ std::vector<double> bending_force_density(const std::string& cell, const surface
     for (int d = 0; d < 3; ++d) F[d * n + i] = f[d];
     for (int d = 0; d < 3; ++d)
       if (!std::isfinite(f[d]))
-        throw NumericalError("cell '" + cell + "': non-finite bending force density at sample site " + to_text(i));
+        throw NumericalError(Cause::non_finite, "cell '" + cell + "': non-finite bending force density at sample site " + to_text(i));
   }
   return F;
 }

@@ -120,7 +120,7 @@ IbStepReport ImmersedBoundary::step() {
       const int fits = int(std::floor(std::log2(no.bound / a.dt_min)));
       const int level = std::min(fits, level_ - 1);
       if (level < 0)
-        throw NumericalError("immersed-boundary step " + to_text(steps_) + " at t = " + to_text(state_.t) +
+        throw NumericalError(Cause::stopping_condition, "immersed-boundary step " + to_text(steps_) + " at t = " + to_text(state_.t) +
                              " s: stopping condition (eq. 5.4) violated even at dt_min = " + to_text(a.dt_min) +
                              " s: (1/4) sqrt(h rho / ||f||_inf) = " + to_text(no.bound) + " s (the state before this step is kept)");
       set_level(level);
@@ -151,7 +151,7 @@ void ImmersedBoundary::sort_start(Entry& e) {
   const double* X = ptr(e.batch.state().storage());
   const index_t k = first_non_finite(X, 3 * n);
   if (k >= 0)
-    throw NumericalError("cell type '" + e.batch.type().name() + "', cell " + to_text((k % n) / nd) +
+    throw NumericalError(Cause::non_finite, "cell type '" + e.batch.type().name() + "', cell " + to_text((k % n) / nd) +
                          ": non-finite position at data site " + to_text(k % nd) + " (coordinate " + "xyz"[k / n] + ")");
   ib_.sort(X, n, e.start);
 }
@@ -159,7 +159,7 @@ void ImmersedBoundary::sort_start(Entry& e) {
 void ImmersedBoundary::interpolate(const ib::SortedPoints& s, const VectorField& u, dvec& U, const std::string& who) {
   U.resize(static_cast<std::size_t>(3 * s.size()));
   ib_.interpolate(s, u, ptr(U));
-  if (!blas::all_finite(U)) throw NumericalError(who + ": non-finite interpolated velocity");
+  if (!blas::all_finite(U)) throw NumericalError(Cause::non_finite, who + ": non-finite interpolated velocity");
 }
 
 void ImmersedBoundary::advance(Entry& e, double c) {
@@ -239,17 +239,17 @@ IbStepReport ImmersedBoundary::attempt() {
     r.dt_bound = r.max_force_density > 0 ? 0.25 * std::sqrt(h * ns_.fluid().density / r.max_force_density)
                                          : std::numeric_limits<double>::infinity();
     if (!std::isfinite(r.max_force_density))
-      throw NumericalError("non-finite spread force density");
+      throw NumericalError(Cause::non_finite, "non-finite spread force density");
     if (options_.adaptive.enabled && dt > r.dt_bound) throw Refused{r.dt_bound};
     if (options_.stopping_condition && dt > r.dt_bound)
-      throw NumericalError("stopping condition (eq. 5.4) violated: ||f||_inf = " + to_text(r.max_force_density) +
+      throw NumericalError(Cause::stopping_condition, "stopping condition (eq. 5.4) violated: ||f||_inf = " + to_text(r.max_force_density) +
                            " dyn/cm^3, dt = " + to_text(dt) + " s > (1/4) sqrt(h rho / ||f||_inf) = " + to_text(r.dt_bound) + " s");
     // (e) the fluid step.
     backup_ = state_;
     fluid_stepped = true;
     r.fluid = ns_.step(state_, &f_);
     for (int a = 0; a < 3; ++a)
-      if (!blas::all_finite(state_.u[a])) throw NumericalError("non-finite fluid velocity (component " + to_text(a) + ")");
+      if (!blas::all_finite(state_.u[a])) throw NumericalError(Cause::non_finite, "non-finite fluid velocity (component " + to_text(a) + ")");
     const double cell_volume = g.h(0) * g.h(1) * g.h(2);
     for (int a = 0; a < 3; ++a) {
       r.max_velocity = std::max(r.max_velocity, blas::norm_inf(state_.u[a]));
@@ -281,8 +281,11 @@ IbStepReport ImmersedBoundary::attempt() {
       throw;
     } catch (const Refused&) {
       throw;
+    } catch (const NumericalError& ex) {
+      throw NumericalError(ex.cause(), "immersed-boundary step " + to_text(steps_) + " at t = " + to_text(t) + " s: " + ex.what() +
+                           " (the state before this step is kept)");
     } catch (const std::exception& ex) {
-      throw NumericalError("immersed-boundary step " + to_text(steps_) + " at t = " + to_text(t) + " s: " + ex.what() +
+      throw NumericalError(Cause::solver, "immersed-boundary step " + to_text(steps_) + " at t = " + to_text(t) + " s: " + ex.what() +
                            " (the state before this step is kept)");
     }
   }

@@ -70,7 +70,7 @@ std::vector<PointGeometry> surface_geometry(const std::vector<Jet>& jets, const 
   for (std::size_t i = 0; i < jets.size(); ++i) {
     g[i] = point_geometry(jets[i]);
     if (!(g[i].det_g > 0) || !std::isfinite(g[i].H))
-      throw NumericalError("cell '" + cell + "': surface metric degenerate at site " + to_text(i) +
+      throw NumericalError(Cause::degenerate_site, "cell '" + cell + "': surface metric degenerate at site " + to_text(i) +
                            " (det G = " + to_text(g[i].det_g) + ", must be > 0)");
   }
   return g;

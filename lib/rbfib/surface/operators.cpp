@@ -62,7 +62,7 @@ std::shared_ptr<const SurfaceOperators> sh_operators(const SphereSites& interp, 
   auto ops = std::make_shared<SurfaceOperators>();
   ops->condition_estimate = lu.rcond();
   if (!(ops->condition_estimate > 1e-14))
-    throw NumericalError("spherical-harmonic interpolation matrix Y (eq. 86, degree " + to_text(M) +
+    throw NumericalError(Cause::solver, "spherical-harmonic interpolation matrix Y (eq. 86, degree " + to_text(M) +
                          "): reciprocal condition " + to_text(ops->condition_estimate) +
                          " <= 1e-14, the sites do not determine an interpolant");
   ops->lu = device_factors(lu);
@@ -155,7 +155,7 @@ std::vector<double> sh_coefficients(const SphereSites& interp, int M, const std:
   harmonic_matrices(interp, M, one);
   Eigen::PartialPivLU<Mat> lu(Y);
   if (!(lu.rcond() > 1e-14))
-    throw NumericalError("spherical-harmonic interpolation matrix Y (eq. 86): reciprocal condition " +
+    throw NumericalError(Cause::solver, "spherical-harmonic interpolation matrix Y (eq. 86): reciprocal condition " +
                          to_text(lu.rcond()) + " <= 1e-14");
   Eigen::VectorXd c = lu.solve(Eigen::Map<const Eigen::VectorXd>(values.data(), values.size()));
   return std::vector<double>(c.data(), c.data() + c.size());
@@ -207,7 +207,7 @@ std::shared_ptr<const SurfaceOperators> rbf_operators(const SphereSites& data, c
   auto ops = std::make_shared<SurfaceOperators>();
   ops->condition_estimate = lu.rcond();
   if (!(ops->condition_estimate > 1e-18))
-    throw NumericalError("RBF interpolation matrix (eq. 2.17, phi = r^" + to_text(p) + ", n_d = " + to_text(nd) +
+    throw NumericalError(Cause::solver, "RBF interpolation matrix (eq. 2.17, phi = r^" + to_text(p) + ", n_d = " + to_text(nd) +
                          "): reciprocal condition " + to_text(ops->condition_estimate) + " <= 1e-18, singular");
 
   // [L Phi, L P] at the sample sites for the six operators, as the columns of one right-hand

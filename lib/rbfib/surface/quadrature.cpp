@@ -41,7 +41,7 @@ RbfWeights rbf_sphere_weights(const SphereSites& sites, int power) {
   RbfWeights r;
   r.rcond = linalg::lu_rcond(lu, norm1);
   if (!(r.rcond > std::numeric_limits<double>::epsilon() * 1e-3))
-    throw NumericalError(what + ": reciprocal condition " + to_text(r.rcond) + ", singular");
+    throw NumericalError(Cause::solver, what + ": reciprocal condition " + to_text(r.rcond) + ", singular");
   std::vector<double> b(static_cast<std::size_t>(m), 0.0);
   b[n] = 4 * pi;
   linalg::DeviceMatrix s = linalg::DeviceMatrix::from_host(m, 1, b.data());
@@ -51,7 +51,7 @@ RbfWeights rbf_sphere_weights(const SphereSites& sites, int power) {
   r.I_phi = w[n];
   for (double v : r.w)
     if (!std::isfinite(v))
-      throw NumericalError("RBF quadrature weights (eq. 2.22): non-finite weight");
+      throw NumericalError(Cause::non_finite, "RBF quadrature weights (eq. 2.22): non-finite weight");
   return r;
 }
 

@@ -50,7 +50,7 @@ std::vector<Triangle> sphere_triangulation(const SphereSites& sites) {
     if (d > best) { best = d; i3 = i; }
   }
   if (!(best > 1e-14))
-    throw NumericalError("sphere triangulation: the sites are coplanar (no initial tetrahedron)");
+    throw NumericalError(Cause::degenerate_site, "sphere triangulation: the sites are coplanar (no initial tetrahedron)");
 
   std::vector<Triangle> faces;
   std::vector<char> alive;
@@ -77,7 +77,7 @@ std::vector<Triangle> sphere_triangulation(const SphereSites& sites) {
     for (index_t f = 0; f < static_cast<index_t>(faces.size()); ++f)
       if (alive[f] && orient(P(faces[f][0]), P(faces[f][1]), P(faces[f][2]), P(q)) > eps) visible.push_back(f);
     if (visible.empty())
-      throw NumericalError("sphere triangulation: site " + to_text(q) + " lies inside the hull (not on the sphere?)");
+      throw NumericalError(Cause::degenerate_site, "sphere triangulation: site " + to_text(q) + " lies inside the hull (not on the sphere?)");
     for (index_t f : visible) alive[f] = 2;  // mark
     std::vector<std::pair<index_t, index_t>> horizon;
     for (index_t f : visible)
@@ -104,9 +104,9 @@ std::vector<Triangle> sphere_triangulation(const SphereSites& sites) {
     }
   for (index_t i = 0; i < n; ++i)
     if (!used[i])
-      throw NumericalError("sphere triangulation: site " + to_text(i) + " is not a vertex of the hull");
+      throw NumericalError(Cause::degenerate_site, "sphere triangulation: site " + to_text(i) + " is not a vertex of the hull");
   if (static_cast<index_t>(out.size()) != 2 * n - 4)
-    throw NumericalError("sphere triangulation: " + to_text(out.size()) + " triangles, expected 2n - 4 = " +
+    throw NumericalError(Cause::solver, "sphere triangulation: " + to_text(out.size()) + " triangles, expected 2n - 4 = " +
                          to_text(2 * n - 4));
   return out;
 }
