@@ -3,9 +3,11 @@
 //   rbfib check SCENE.yaml                  validate; print the resolved scene with units, the
 //                                           dimensionless groups, eq. 5.4's bound, memory
 //   rbfib run SCENE.yaml --out DIR [--until T]
-//                                           run it; progress on stdout; DIR/diagnostics.csv and
-//                                           DIR/checkpoint.h5 (at the scene's interval and the end)
-//   rbfib restart DIR [--until T]           continue from DIR/checkpoint.h5, bit for bit
+//                                           run it (lib/rbfib/run); progress on stdout;
+//                                           DIR/diagnostics.csv and DIR/checkpoint.h5 (at the
+//                                           scene's interval, the end and a numerical stop)
+//   rbfib restart DIR [--until T]           continue from DIR/checkpoint.h5, bit for bit (a run
+//                                           that has finished or stopped says so and exits)
 //
 // Exit status: 0 done, 2 bad input (one line naming the field and the value), 3 a numerical
 // failure (the run stops, the message names the step, time and cause; what was written stays).
@@ -16,6 +18,7 @@
 #include "rbfib/io/checkpoint.hpp"
 #include "rbfib/scene/scene.hpp"
 #include "rbfib/io/snapshot.hpp"
+#include "rbfib/run/run.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -28,6 +31,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <unistd.h>
 
 using namespace rbfib;
@@ -149,117 +153,104 @@ void print_check(const scene::Scene& s) {
             << m.cells / 1048576 << " MiB; this machine has " << physical_memory() / 1073741824 << " GiB\n";
 }
 
-/// The diagnostics table's header for the step's batches.
-std::string csv_header(const sim::ImmersedBoundary& ib) {
-  std::string h = "step,t_s,dt_s,max_velocity_cm_s,kinetic_energy_erg,elastic_energy_erg,max_force_density_dyn_cm3,dt_bound_s,"
-                  "seconds_interpolation,seconds_forces,seconds_spreading,seconds_fluid";
+/// The diagnostics table's columns for the step's batches.
+std::vector<std::string> csv_columns(const sim::ImmersedBoundary& ib) {
+  std::vector<std::string> c = {"step", "t_s", "dt_s", "max_velocity_cm_s", "kinetic_energy_erg", "elastic_energy_erg",
+                                "max_force_density_dyn_cm3", "dt_bound_s", "seconds_interpolation", "seconds_forces",
+                                "seconds_spreading", "seconds_fluid"};
   for (index_t b = 0; b < ib.batches(); ++b)
-    for (index_t c = 0; c < ib.batch(b).size(); ++c) h += ",volume_" + ib.batch(b).type().name() + "_" + std::to_string(c) + "_um3";
-  return h;
+    for (index_t k = 0; k < ib.batch(b).size(); ++k) c.push_back("volume_" + ib.batch(b).type().name() + "_" + std::to_string(k) + "_um3");
+  return c;
 }
 
-/// Keeps the header and the rows of steps <= last (rows written after the checkpoint a restart
-/// continues from would otherwise appear twice).
-void trim_csv(const std::string& path, long last) {
-  std::ifstream in(path);
-  std::string line, kept;
-  bool header = true;
-  while (std::getline(in, line)) {
-    if (header || std::atol(line.c_str()) <= last) kept += line + "\n";
-    header = false;
+/// One line of the diagnostics table (the step as an integer).
+std::string csv_line(const std::vector<double>& row) {
+  std::ostringstream s;
+  for (std::size_t k = 0; k < row.size(); ++k) {
+    if (k == 0) s << std::llround(row[k]);
+    else s << "," << row[k];
   }
-  in.close();
-  std::ofstream(path) << kept;
+  return s.str() + "\n";
 }
 
-/// Steps the scene to t_end, writing diagnostics and checkpoints into out.
-int advance(const scene::Scene& s, sim::ImmersedBoundary& ib, const std::string& out, double t_end,
-            io::SnapshotWriter* snapshots) {
-  const std::string checkpoint = out + "/checkpoint.h5";
-  double next_snapshot = s.snapshot_every > 0 ? (std::floor(ib.time() / s.snapshot_every + 1e-9) + 1) * s.snapshot_every : 0;
-  std::ofstream csv(out + "/diagnostics.csv", std::ios::app);
+/// Steps the scene from its start or its checkpoint (DIR/checkpoint.h5) to min(until, its end):
+/// the run loop (run/run.hpp) with the scene's cadences; DIR/diagnostics.csv is the series
+/// "diagnostics" (kept in the checkpoint), rewritten from it when a run continues.
+int advance(const std::string& text, const std::string& origin, const std::string& out, double until) {
   const bool terminal = isatty(STDOUT_FILENO);
-  const auto start = std::chrono::steady_clock::now();
-  auto last_print = start;
-  double next_checkpoint = s.checkpoint_every > 0 ? (std::floor(ib.time() / s.checkpoint_every + 1e-9) + 1) * s.checkpoint_every : 0;
-  long steps = 0;
-  while (ib.time() < t_end * (1 - 1e-12)) {
-    sim::IbStepReport r;
-    try {
-      r = ib.step();
-    } catch (const NumericalError& e) {
-      csv.flush();
-      std::cout << (terminal ? "\n" : "") << "rbfib: stopped: " << e.what() << "; the last checkpoint is " << checkpoint << std::endl;
-      return 3;
-    }
-    ++steps;
-    if (ib.step_count() % s.diagnostics_every == 0) {
-      csv << ib.step_count() << "," << ib.time() << "," << r.dt << "," << r.max_velocity << "," << r.kinetic_energy << ","
-          << r.elastic_energy << "," << r.max_force_density << "," << r.dt_bound << "," << r.seconds_interpolation << ","
-          << r.seconds_forces << "," << r.seconds_spreading << "," << r.seconds_fluid;
-      for (index_t b = 0; b < ib.batches(); ++b)
-        for (double v : ib.diagnostics(b).volume) csv << "," << v / (units::um * units::um * units::um);
-      csv << "\n";
-    }
-    if (snapshots && ib.time() >= next_snapshot * (1 - 1e-12)) {
+  const std::string checkpoint = out + "/checkpoint.h5", csv_path = out + "/diagnostics.csv";
+  const scene::Scene s = scene::parse_scene(text, origin);
+  run::Options o;
+  o.t_end = s.t_end;
+  o.until = until > 0 ? until : s.t_end;
+  o.checkpoint = checkpoint;
+  o.checkpoint_every = {0, s.checkpoint_every, 0};
+  o.sample_every = {s.diagnostics_every, 0, 0};
+  o.snapshot_every = {0, s.snapshot_every, 0};
+  o.progress_every = {0, 0, terminal ? 0.5 : 5.0};
+  std::ofstream csv;
+  std::unique_ptr<io::SnapshotWriter> snapshots;
+  run::Hooks h;
+  h.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport* r, run::SeriesSet& series) {
+    if (!r) return;  // the table starts after the first step
+    run::Series& d = series["diagnostics"];
+    if (d.columns.empty()) d.columns = csv_columns(ib);
+    std::vector<double> row = {double(ib.step_count()), ib.time(), r->dt, r->max_velocity, r->kinetic_energy, r->elastic_energy,
+                               r->max_force_density, r->dt_bound, r->seconds_interpolation, r->seconds_forces,
+                               r->seconds_spreading, r->seconds_fluid};
+    for (index_t b = 0; b < ib.batches(); ++b)
+      for (double v : ib.diagnostics(b).volume) row.push_back(v / (units::um * units::um * units::um));
+    csv << csv_line(row);
+    d.rows.push_back(std::move(row));
+  };
+  h.checkpointed = [&](const run::SeriesSet&) { csv.flush(); };
+  if (s.snapshot_every > 0)
+    h.snapshot = [&](const sim::ImmersedBoundary& ib) {
+      if (!snapshots) snapshots = std::make_unique<io::SnapshotWriter>(out, ib);
       snapshots->write(ib);
-      next_snapshot += s.snapshot_every;
-    }
-    if (s.checkpoint_every > 0 && ib.time() >= next_checkpoint * (1 - 1e-12)) {
-      csv.flush();
-      io::write_checkpoint(checkpoint, s.source, ib);
-      next_checkpoint += s.checkpoint_every;
-    }
-    const auto now = std::chrono::steady_clock::now();
-    const double since = std::chrono::duration<double>(now - last_print).count();
-    if (since > (terminal ? 0.5 : 5.0) || ib.time() >= t_end * (1 - 1e-12)) {
-      last_print = now;
-      const double wall = std::chrono::duration<double>(now - start).count();
-      const double rate = steps / wall, left = std::max(0.0, (t_end - ib.time()) / r.dt / rate);
-      char line[256];
-      std::snprintf(line, sizeof line, "t = %.4g us of %.4g (%5.1f%%), step %ld, %.3g steps/s, ETA %.0f s, max|u| = %.3g mm/s",
-                    ib.time() / units::us, t_end / units::us, 100 * ib.time() / t_end, ib.step_count(), rate, left,
-                    r.max_velocity * 10);
-      std::cout << (terminal ? "\r" : "") << line << (terminal ? "" : "\n") << std::flush;
+    };
+  h.progress = [&](const run::Progress& p) {
+    std::cout << (terminal ? "\r" : "") << p.describe() << (terminal ? "" : "\n") << std::flush;
+  };
+  std::cout << scene::describe(s) << "building the cell types and the solver ..." << std::endl;
+  run::Run run(text, origin, o, h);
+  // The table as the run has it: its header and every row the checkpoint kept.
+  csv.open(csv_path, std::ios::trunc);
+  const std::vector<std::string> columns = csv_columns(run.ib());
+  for (std::size_t k = 0; k < columns.size(); ++k) csv << (k ? "," : "") << columns[k];
+  csv << "\n";
+  if (const auto it = run.series().find("diagnostics"); it != run.series().end())
+    for (const std::vector<double>& row : it->second.rows) csv << csv_line(row);
+  if (run.continued()) {
+    std::cout << "restarting at step " << run.ib().step_count() << ", t = " << run.ib().time() / units::us << " us" << std::endl;
+    if (s.snapshot_every > 0) {
+      snapshots = std::make_unique<io::SnapshotWriter>(out, run.ib());
+      snapshots->resume(run.ib().time());
     }
   }
+  const run::Progress p = run.evolve();
   csv.flush();
-  io::write_checkpoint(checkpoint, s.source, ib);
-  std::cout << (terminal ? "\n" : "") << "done: " << steps << " steps to t = " << ib.time() / units::us << " us in "
-            << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s; " << out
-            << "/diagnostics.csv, " << checkpoint << std::endl;
+  if (terminal) std::cout << "\n";
+  if (p.status == run::RunStatus::stopped) {
+    std::cout << "rbfib: stopped: " << p.stop_message << "; the last good state is in " << checkpoint << std::endl;
+    return 3;
+  }
+  std::cout << "done: " << p.sitting_steps << " steps in " << p.sitting_seconds << " s to t = " << p.t / units::us << " us"
+            << (p.status == run::RunStatus::finished ? " (the scene's end)" : "") << "; " << csv_path << ", " << checkpoint << std::endl;
   return 0;
 }
 
-int run(const scene::Scene& s, const std::string& out, double until) {
+int run_scene(const scene::Scene& s, const std::string& out, double until) {
   check_memory(s);
   std::filesystem::create_directories(out);
   std::ofstream(out + "/scene.yaml") << s.source;
-  std::cout << scene::describe(s) << "building the cell types and the solver ..." << std::endl;
-  sim::ImmersedBoundary ib = scene::build(s);
-  std::ofstream(out + "/diagnostics.csv") << csv_header(ib) << "\n";
-  std::unique_ptr<io::SnapshotWriter> snapshots;
-  if (s.snapshot_every > 0) {
-    snapshots = std::make_unique<io::SnapshotWriter>(out, ib);
-    snapshots->write(ib);  // t = 0
-  }
-  return advance(s, ib, out, until > 0 ? std::min(until, s.t_end) : s.t_end, snapshots.get());
+  std::filesystem::remove(out + "/checkpoint.h5");  // a run starts afresh; `restart` continues
+  return advance(s.source, s.name, out, until > 0 ? std::min(until, s.t_end) : s.t_end);
 }
 
 int restart(const std::string& out, double until) {
   const io::Checkpoint k = io::read_checkpoint(out + "/checkpoint.h5");
-  const scene::Scene s = scene::parse_scene(k.scene_yaml, out + "/checkpoint.h5");
-  std::cout << scene::describe(s) << "restarting at step " << k.state.steps << ", t = " << k.state.fluid.t / units::us
-            << " us; building the cell types and the solver ..." << std::endl;
-  sim::ImmersedBoundary ib = scene::build(s);
-  ib.restore(k.state);
-  trim_csv(out + "/diagnostics.csv", k.state.steps);
-  std::unique_ptr<io::SnapshotWriter> snapshots;
-  if (s.snapshot_every > 0) {
-    snapshots = std::make_unique<io::SnapshotWriter>(out, ib);
-    snapshots->resume(ib.time());
-  }
-  return advance(s, ib, out, until > 0 ? until : s.t_end, snapshots.get());
+  return advance(k.scene_yaml, out + "/checkpoint.h5", out, until);
 }
 
 }  // namespace
@@ -292,7 +283,7 @@ int main(int argc, char** argv) {
       print_check(s);
       return 0;
     }
-    return run(s, out, until);
+    return run_scene(s, out, until);
   } catch (const InputError& e) {
     std::cerr << "rbfib: " << e.what() << std::endl;
     return 2;

@@ -153,7 +153,7 @@ Sample from_row(const std::vector<double>& r) {
 }
 
 /// Runs one scene to t_end (or until a NumericalError stops it), sampling every `every` steps;
-/// keeps the data sites at t_snapshot (if > 0). Resumable runs keep their wall time in a file.
+/// keeps the data sites at t_snapshot (if > 0).
 Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, int every, const st::Options& opt, bool resumable,
               const std::string& prefix = "", double max_seconds = INFINITY, double t_snapshot = 0) {
   char mu_text[32];
@@ -166,10 +166,10 @@ Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, i
   r.t_end = t_end;
   const long total = std::lround(t_end / dt), snapshot_step = t_snapshot > 0 ? std::lround(t_snapshot / dt) : -1;
   long material = 0;
-  // Outlines (Fig. 5.2) at the start, 1/3, 2/3 and the end, the snapshot and the wall time, kept
+  // Outlines (Fig. 5.2) at the start, 1/3, 2/3 and the end, and the snapshot, kept
   // in files as they are taken so that a continued run has them all.
   auto outline_file = [&](int k) { return opt.out_dir + "/outline_" + tag + "_" + std::to_string(k) + ".txt"; };
-  const std::string snapshot_file = opt.out_dir + "/snapshot_" + tag + ".txt", timing_file = opt.out_dir + "/timing_" + tag + ".txt";
+  const std::string snapshot_file = opt.out_dir + "/snapshot_" + tag + ".txt";
   auto write_sites = [](const std::string& path, const sim::ImmersedBoundary& ib) {
     std::ofstream f(path);
     f.precision(17);
@@ -198,7 +198,6 @@ Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, i
     if (step == 0) {  // a fresh start: nothing of an earlier run may remain
       for (int k = 1; k < 4; ++k) std::filesystem::remove(outline_file(k));
       std::filesystem::remove(snapshot_file);
-      std::filesystem::remove(timing_file);
     }
     if (step == snapshot_step) write_sites(snapshot_file, ib);
     for (int k = 0; k < 4; ++k)
@@ -226,14 +225,8 @@ Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, i
     f >> t;
     for (double x; f >> x;) r.snapshot.push_back(x);
   }
-  r.seconds = r.run.seconds;
+  r.seconds = r.run.seconds;  // over all sittings: the checkpoint keeps them
   r.steps_timed = r.run.steps_timed;
-  if (resumable) {  // add the earlier sittings' wall time
-    double seconds = 0;
-    long steps = 0;
-    if (std::ifstream f(timing_file); f >> seconds >> steps) r.seconds += seconds, r.steps_timed += steps;
-    std::ofstream(timing_file) << to_text(r.seconds) << ' ' << r.steps_timed << '\n';
-  }
   return r;
 }
 

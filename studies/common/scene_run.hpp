@@ -1,17 +1,18 @@
 #pragma once
-// Runs one scene for a study: built from its YAML text (kept beside the results, where `rbfib run`
-// reruns it), stepped to the scene's end time, sampled every few steps, progress logged every 30 s;
-// a numerical failure (eq. 5.4, a degenerate cell) ends the run early and is reported, not thrown.
-// Resumable runs (full scale) write DIR/checkpoint_<tag>.h5 (io/checkpoint.hpp) and their
-// samples (DIR/samples_<tag>.txt, one row of numbers per line) every five minutes of wall time and
-// at the end, and continue from them when started again with the same scene text; a run stopped by
-// a numerical failure keeps its last good state and the message (DIR/stopped_<tag>.txt) and is not
-// stepped again.
+// Runs one scene for a study through the library's run loop (run/run.hpp): built from its YAML
+// text (kept beside the results, where `rbfib run` reruns it), stepped to the scene's end time,
+// sampled every few steps, progress logged every 30 s; a numerical failure (eq. 5.4, a degenerate
+// cell) ends the run early and is reported, not thrown. Resumable runs (full scale) keep
+// DIR/checkpoint_<tag>.h5 with their samples inside, written every five minutes of wall time, at
+// the sitting's end and at the run's end, and continue from it when started again with the same
+// scene text; a run stopped by a numerical failure keeps its last good state and the stop, and is
+// not stepped again.
 #include "common/study.hpp"
 #include "rbfib/sim/ib_step.hpp"
 
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,10 +36,10 @@ struct SceneRun {
   std::vector<std::vector<double>> final_positions;  ///< each batch's data sites at the end (cm)
   std::vector<dvec> final_points;                    ///< each tethered point set's positions at the end (cm)
   long steps = 0;        ///< steps from t = 0 to the end (or to the failure)
-  long steps_timed = 0;  ///< steps taken by this process
+  long steps_timed = 0;  ///< steps timed, over all sittings
   double seconds = 0;    ///< their wall time (s)
-  double min_bound = INFINITY;  ///< smallest eq. 5.4 bound over those steps (s)
   std::string stopped;   ///< the NumericalError's message when the run ended early
+  std::optional<Cause> stop_cause;  ///< and its cause
   bool finished = false; ///< reached the scene's end (or stopped); false: the wall-time budget ran out
   double seconds_per_step() const { return steps_timed > 0 ? seconds / double(steps_timed) : NAN; }
   /// How far the run is toward t_end, for record_run (the time is the last sample's).
@@ -46,8 +47,8 @@ struct SceneRun {
 };
 
 /// Runs the scene `text` (its end time is the run's), sampling every `every` steps and at the end;
-/// writes DIR/scene_<tag>.yaml. A resumable run given `max_seconds` of wall time saves its
-/// checkpoint when they are spent and returns unfinished (continued at the next start).
+/// writes DIR/scene_<tag>.yaml. A resumable run given `max_seconds` of wall time (a sitting) saves
+/// its checkpoint when they are spent and returns unfinished (continued at the next start).
 SceneRun run_scene(const std::string& text, const std::string& tag, int every, bool resumable, const Options& opt,
                    const SceneRunHooks& hooks, double max_seconds = INFINITY);
 

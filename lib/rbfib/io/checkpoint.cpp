@@ -12,7 +12,8 @@ namespace rbfib::io {
 
 namespace {
 
-constexpr const char* format = "rbfib checkpoint 1";
+constexpr const char* format = "rbfib checkpoint 2";
+constexpr const char* format_1 = "rbfib checkpoint 1";  // no series, no run attributes
 
 using h5::Id;
 
@@ -62,9 +63,44 @@ class Reader {
   std::string path_;
 };
 
+Cause cause_named(const std::string& name, const Reader& r) {
+  for (Cause c : {Cause::stopping_condition, Cause::non_finite, Cause::degenerate_site, Cause::inverted_cell, Cause::solver})
+    if (name == to_string(c)) return c;
+  r.fail(std::string("attribute stop_cause: ").append(name));
+}
+
+RunStatus status_named(const std::string& name, const Reader& r) {
+  for (RunStatus s : {RunStatus::running, RunStatus::finished, RunStatus::stopped})
+    if (name == to_string(s)) return s;
+  r.fail(std::string("attribute status: ").append(name));
+}
+
+std::string join_lines(const std::vector<std::string>& v) {
+  std::string s;
+  for (const std::string& c : v) s += c + "\n";
+  return s;
+}
+
+std::vector<std::string> split_lines(const std::string& s) {
+  std::vector<std::string> v;
+  std::size_t a = 0;
+  for (std::size_t b; (b = s.find('\n', a)) != std::string::npos; a = b + 1) v.push_back(s.substr(a, b - a));
+  return v;
+}
+
 }  // namespace
 
-void write_checkpoint(const std::string& path, const std::string& scene_yaml, const sim::ImmersedBoundary& ib) {
+const char* to_string(RunStatus s) {
+  switch (s) {
+    case RunStatus::running: return "running";
+    case RunStatus::finished: return "finished";
+    case RunStatus::stopped: return "stopped";
+  }
+  return "unknown";
+}
+
+void write_checkpoint(const std::string& path, const std::string& scene_yaml, const sim::ImmersedBoundary& ib,
+                      const RunRecord& record) {
   const sim::ImmersedBoundary::Carried c = ib.carried();
   const std::string tmp = path + ".tmp";
   auto array = [](hid_t where, const std::string& name, const dvec& v) {
@@ -78,11 +114,32 @@ void write_checkpoint(const std::string& path, const std::string& scene_yaml, co
     h5::attribute(file, "dt", c.dt);
     h5::attribute(file, "level", c.level);
     h5::attribute(file, "allowing", c.allowing);
+    h5::attribute(file, "status", std::string(to_string(record.status)));
+    h5::attribute(file, "stop_message", record.stop_message);
+    h5::attribute(file, "stop_cause", std::string(to_string(record.stop_cause)));
+    h5::attribute(file, "wall_seconds", record.wall_seconds);
+    h5::attribute(file, "steps_timed", record.steps_timed);
     h5::write_bytes(file, "scene", scene_yaml);
+    {
+      Id series = h5::create_group(file, "series");
+      for (const auto& [name, s] : record.series) {
+        Id g = h5::create_group(series, name);
+        h5::attribute(g, "columns", join_lines(s.columns));
+        std::vector<double> values;
+        std::vector<long long> widths;
+        for (const std::vector<double>& row : s.rows) {
+          values.insert(values.end(), row.begin(), row.end());
+          widths.push_back((long long)row.size());
+        }
+        h5::write(g, "values", values.data(), {hsize_t(values.size())});
+        h5::write(g, "widths", widths.data(), {hsize_t(widths.size())});
+      }
+    }
     {
       Id fluid = h5::create_group(file, "fluid");
       h5::attribute(fluid, "t", c.fluid.t);
-      for (int a = 0; a < 3; ++a) array(fluid, "u" + std::to_string(a), c.fluid.u[a]);
+      const char* u[3] = {"u0", "u1", "u2"};
+      for (int a = 0; a < 3; ++a) array(fluid, u[a], c.fluid.u[a]);
       array(fluid, "p", c.fluid.p);
       array(fluid, "phi0", c.fluid.phi[0]);
       array(fluid, "phi1", c.fluid.phi[1]);
@@ -108,7 +165,8 @@ Checkpoint read_checkpoint(const std::string& path) {
   Id file{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
   H5Eset_auto2(H5E_DEFAULT, handler, data);
   if (file < 0) throw InputError("checkpoint", path, "is not a readable HDF5 file");
-  if (r.string_attribute(file, "format") != format) r.fail("format (expected '" + std::string(format) + "')");
+  const std::string version = r.string_attribute(file, "format");
+  if (version != format && version != format_1) r.fail("format (expected '" + std::string(format) + "')");
   Checkpoint k;
   k.scene_yaml = r.bytes(file, "scene");
   k.state.steps = r.attribute<long>(file, "steps", H5T_NATIVE_LONG);
@@ -132,6 +190,33 @@ Checkpoint read_checkpoint(const std::string& path) {
     H5Gget_info(g, &info);
     auto& into = std::string(group) == "batches" ? k.state.batches : k.state.points;
     for (hsize_t i = 0; i < info.nlinks; ++i) into.push_back(r.array(g, std::to_string(i).c_str()));
+  }
+  if (version == format_1) return k;
+  k.record.status = status_named(r.string_attribute(file, "status"), r);
+  k.record.stop_message = r.string_attribute(file, "stop_message");
+  k.record.stop_cause = cause_named(r.string_attribute(file, "stop_cause"), r);
+  k.record.wall_seconds = r.attribute<double>(file, "wall_seconds", H5T_NATIVE_DOUBLE);
+  k.record.steps_timed = r.attribute<long>(file, "steps_timed", H5T_NATIVE_LONG);
+  if (H5Lexists(file, "series", H5P_DEFAULT) <= 0) r.fail("series");
+  Id series{H5Gopen2(file, "series", H5P_DEFAULT), H5Gclose};
+  H5G_info_t info;
+  H5Gget_info(series, &info);
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    char name[256];
+    if (H5Lget_name_by_idx(series, ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof name, H5P_DEFAULT) < 0) r.fail("series names");
+    Id g{H5Gopen2(series, name, H5P_DEFAULT), H5Gclose};
+    Series& s = k.record.series[name];
+    s.columns = split_lines(r.string_attribute(g, "columns"));
+    const dvec values = r.array(g, "values"), widths = r.array(g, "widths");
+    const host_vector<double> v = values, w = widths;
+    std::size_t at = 0;
+    for (double width : w) {
+      const auto n = static_cast<std::size_t>(width);
+      if (width < 0 || at + n > v.size()) r.fail(std::string("series ") + name + " (widths)");
+      s.rows.emplace_back(v.begin() + std::ptrdiff_t(at), v.begin() + std::ptrdiff_t(at + n));
+      at += n;
+    }
+    if (at != v.size()) r.fail(std::string("series ") + name + " (widths)");
   }
   return k;
 }

@@ -1,7 +1,8 @@
 #pragma once
-// Checkpoints of a scene's run in HDF5: the scene's YAML text and everything the coupled step
-// carries over (sim::ImmersedBoundary::Carried). Restoring one into the step built from the
-// same scene continues the run bit for bit.
+// Checkpoints of a scene's run in HDF5: the scene's YAML text, everything the coupled step
+// carries over (sim::ImmersedBoundary::Carried) and what the run loop keeps beside it (its named
+// sample series, whether it has finished or stopped, its wall time over all sittings). Restoring
+// one into the step built from the same scene continues the run bit for bit.
 //
 // Layout (one file; every array a 1D dataset of doubles, in the library's layouts):
 //   /scene                the YAML text (bytes)
@@ -9,20 +10,49 @@
 //   /fluid/phi0, phi1     the lagged projection data (cm^2/s); attribute t (s)
 //   /batches/0, 1, ...    each cell batch's data-site state, n_d x 6N column-major: X then U
 //   /points/0, 1, ...     each tethered point set's positions, 3n
-//   attributes of /: format ("rbfib checkpoint 1"), steps, dt (s), level, allowing
+//   /series/<name>/values every row of the series, one after the other; .../widths each row's
+//                         length; attribute columns (the columns' names, one per line; may be empty)
+//   attributes of /: format ("rbfib checkpoint 2"), steps, dt (s), level, allowing, status
+//   ("running", "finished" or "stopped"), stop_message, stop_cause, wall_seconds, steps_timed
+// Format 1 (no series, no run attributes) is read as a running run without series.
 // Written atomically: to PATH.tmp, flushed and fsynced, then renamed over PATH (and the
 // directory fsynced), so a kill at any moment leaves the previous checkpoint whole.
+#include "rbfib/core/error.hpp"
 #include "rbfib/sim/ib_step.hpp"
 
+#include <map>
 #include <string>
+#include <vector>
 
 namespace rbfib::io {
 
-void write_checkpoint(const std::string& path, const std::string& scene_yaml, const sim::ImmersedBoundary& ib);
+/// A named series of samples kept with a run: rows of numbers (by convention the first is the
+/// time in s), optionally with the columns' names (with their units).
+struct Series {
+  std::vector<std::string> columns;
+  std::vector<std::vector<double>> rows;
+};
+
+enum class RunStatus { running, finished, stopped };
+const char* to_string(RunStatus s);
+
+/// What the run loop keeps beside the coupled step's state.
+struct RunRecord {
+  RunStatus status = RunStatus::running;
+  std::string stop_message;          ///< the numerical stop's message (status stopped)
+  Cause stop_cause = Cause::solver;  ///< and its cause
+  double wall_seconds = 0;           ///< wall time of the steps taken, over all sittings (s)
+  long steps_timed = 0;              ///< the steps those seconds took
+  std::map<std::string, Series> series;
+};
+
+void write_checkpoint(const std::string& path, const std::string& scene_yaml, const sim::ImmersedBoundary& ib,
+                      const RunRecord& record = {});
 
 struct Checkpoint {
   std::string scene_yaml;
   sim::ImmersedBoundary::Carried state;
+  RunRecord record;
 };
 
 /// Reads a checkpoint; throws InputError naming the file and what is missing or malformed.

@@ -1,0 +1,166 @@
+#include "rbfib/run/run.hpp"
+
+#include "rbfib/core/units.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+namespace rbfib::run {
+
+namespace {
+
+using clock_type = std::chrono::steady_clock;
+
+double seconds_between(clock_type::time_point a, clock_type::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+/// Whether a cadence is due: by steps and simulated time counted from t = 0 (so that a continued
+/// run samples where an uninterrupted one does), by wall time from the last firing.
+class Due {
+ public:
+  Due(const Cadence& c, double t, clock_type::time_point now) : c_(c), last_wall_(now) {
+    next_t_ = c.time > 0 ? (std::floor(t / c.time * (1 + 1e-12)) + 1) * c.time : INFINITY;
+  }
+  bool operator()(long step, double t, clock_type::time_point now) {
+    bool due = (c_.steps > 0 && step % c_.steps == 0) || (c_.wall > 0 && seconds_between(last_wall_, now) >= c_.wall);
+    if (c_.time > 0 && t >= next_t_ * (1 - 1e-12)) {
+      due = true;
+      while (next_t_ <= t * (1 + 1e-12)) next_t_ += c_.time;
+    }
+    if (due) last_wall_ = now;
+    return due;
+  }
+
+ private:
+  Cadence c_;
+  double next_t_;
+  clock_type::time_point last_wall_;
+};
+
+}  // namespace
+
+double Progress::hours_to_go() const {
+  if (ended()) return 0;
+  const double mean_dt = steps > 0 ? t / double(steps) : dt;
+  const double h = (t_end - t) / mean_dt * seconds_per_step() / 3600;
+  return std::isfinite(h) ? std::max(0.0, h) : NAN;
+}
+
+std::string Progress::describe() const {
+  // The time unit that suits the run's end.
+  const double unit = t_end >= 1e-3 ? units::ms : units::us;
+  const char* name = t_end >= 1e-3 ? "ms" : "us";
+  char line[320];
+  const double rate = sitting_seconds > 0 ? double(sitting_steps) / sitting_seconds : NAN;
+  const double mean_dt = steps > 0 ? t / double(steps) : dt;
+  std::snprintf(line, sizeof line, "t = %.4g of %.4g %s (%.1f%%), step %ld, %.3g steps/s, mean dt %.4g ns", t / unit, t_end / unit, name,
+                t_end > 0 ? 100 * t / t_end : 0.0, steps, rate, mean_dt / units::ns);
+  std::string s = line;
+  if (status == RunStatus::stopped) return s + ", stopped (" + to_string(*stop_cause) + "): " + stop_message;
+  if (status == RunStatus::finished) return s + ", finished";
+  const double h = hours_to_go();
+  if (std::isfinite(h)) {
+    std::snprintf(line, sizeof line, ", %.3g h to go", h);
+    s += line;
+  }
+  return s;
+}
+
+Run::Run(const std::string& text, const std::string& origin, Options options, Hooks hooks)
+    : text_(text),
+      scene_(scene::parse_scene(text, origin)),
+      options_(std::move(options)),
+      hooks_(std::move(hooks)),
+      ib_(scene::build(scene_, !hooks_.prepare)) {
+  require(options_.t_end > 0 && std::isfinite(options_.t_end), "run end t_end (s)", options_.t_end, "must be positive and finite");
+  require(options_.sitting >= 0, "sitting (s)", options_.sitting, "must be >= 0");
+  if (hooks_.built) hooks_.built(ib_);
+  if (!options_.checkpoint.empty() && std::filesystem::exists(options_.checkpoint)) {
+    io::Checkpoint k = io::read_checkpoint(options_.checkpoint);
+    if (k.scene_yaml == text_) {
+      ib_.restore(k.state);
+      record_ = std::move(k.record);
+      continued_ = true;
+    }
+  }
+  if (!continued_) {
+    if (hooks_.prepare) hooks_.prepare(ib_);
+    sample(nullptr);
+    if (hooks_.after_step) hooks_.after_step(ib_);
+    if (hooks_.snapshot) hooks_.snapshot(ib_);
+  }
+}
+
+const Series& Run::series(const std::string& name) const {
+  const auto it = record_.series.find(name);
+  if (it == record_.series.end()) throw InputError("series", name, "is not one of this run's");
+  return it->second;
+}
+
+void Run::sample(const sim::IbStepReport* report) {
+  if (hooks_.sample) hooks_.sample(ib_, report, record_.series);
+}
+
+void Run::checkpoint() {
+  if (options_.checkpoint.empty()) return;
+  io::write_checkpoint(options_.checkpoint, text_, ib_, record_);
+  if (hooks_.checkpointed) hooks_.checkpointed(record_.series);
+}
+
+Progress Run::progress() const {
+  Progress p;
+  p.status = record_.status;
+  p.t = ib_.time();
+  p.t_end = options_.t_end;
+  p.steps = ib_.step_count();
+  p.dt = ib_.dt();
+  p.wall_seconds = record_.wall_seconds;
+  p.steps_timed = record_.steps_timed;
+  p.sitting_seconds = sitting_seconds_;
+  p.sitting_steps = sitting_steps_;
+  if (record_.status == RunStatus::stopped) {
+    p.stop_message = record_.stop_message;
+    p.stop_cause = record_.stop_cause;
+  }
+  return p;
+}
+
+Progress Run::evolve() {
+  if (record_.status != RunStatus::running) {
+    if (hooks_.progress) hooks_.progress(progress());
+    return progress();
+  }
+  const auto start = clock_type::now();
+  Due checkpoint_due(options_.checkpoint_every, ib_.time(), start), sample_due(options_.sample_every, ib_.time(), start),
+      snapshot_due(options_.snapshot_every, ib_.time(), start), progress_due(options_.progress_every, ib_.time(), start);
+  const double end = std::min(options_.t_end, options_.until);
+  try {
+    while (ib_.time() < end * (1 - 1e-12) && seconds_between(start, clock_type::now()) < options_.sitting) {
+      const auto t0 = clock_type::now();
+      const sim::IbStepReport report = ib_.step();
+      const auto t1 = clock_type::now();
+      sitting_seconds_ += seconds_between(t0, t1);
+      record_.wall_seconds += seconds_between(t0, t1);
+      ++sitting_steps_;
+      ++record_.steps_timed;
+      const long step = ib_.step_count();
+      const double t = ib_.time();
+      const bool last = t >= options_.t_end * (1 - 1e-12);
+      if (sample_due(step, t, t1) || last) sample(&report);
+      if (hooks_.after_step) hooks_.after_step(ib_);
+      if (hooks_.snapshot && snapshot_due(step, t, t1)) hooks_.snapshot(ib_);
+      if (last) record_.status = RunStatus::finished;
+      else if (checkpoint_due(step, t, t1)) checkpoint();
+      if (hooks_.progress && progress_due(step, t, t1)) hooks_.progress(progress());
+    }
+  } catch (const NumericalError& e) {
+    // The step left the last good state in place: it is what the checkpoint keeps.
+    record_.status = RunStatus::stopped;
+    record_.stop_message = e.what();
+    record_.stop_cause = e.cause();
+  }
+  checkpoint();
+  if (hooks_.progress) hooks_.progress(progress());
+  return progress();
+}
+
+}  // namespace rbfib::run

@@ -1,0 +1,186 @@
+// The run loop (run/run.hpp): a run split over sittings equals one taken at once, bit for bit,
+// series included; a finished or stopped run is a checkpoint marked so and is not stepped again;
+// cadences by steps and by simulated time fire where they should; series survive the checkpoint.
+#include "rbfib/run/run.hpp"
+
+#include "rbfib/core/units.hpp"
+#include "rbfib/io/checkpoint.hpp"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+namespace rbfib::run {
+namespace {
+
+// A small periodic box with one relaxing sphere: a few ms of CPU per step.
+std::string sphere_scene(const std::string& dt = "0.4 us", const std::string& end = "4 us", const std::string& stretch = "[1, 0.909090909, 1.1]") {
+  return R"(
+domain: {size: [12 um, 12 um, 12 um], periodic: [x, y, z]}
+fluid: {density: 1 g/cm^3, viscosity: 0.1 cP}
+grid: {h: 1 um}
+time: {integrator: backward_forward_euler, dt: )" + dt + ", end: " + end + R"(}
+ib: {kernel: bspline3}
+cell_types:
+  - {name: sphere, preset: skalak_sphere, radius: 3 um, data_sites: 144, sample_sites: 144}
+cells:
+  - {type: sphere, center: [6 um, 6 um, 6 um], stretch: )" + stretch + R"(}
+)";
+}
+
+std::string temp_path(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("rbfib_test_run_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+/// Hooks that record (t, kinetic energy) every sample in series "energy".
+Hooks energy_hooks() {
+  Hooks h;
+  h.sample = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport* r, SeriesSet& s) {
+    Series& e = s["energy"];
+    e.columns = {"t_s", "kinetic_energy_erg"};
+    e.rows.push_back({ib.time(), r ? r->kinetic_energy : 0.0});
+  };
+  return h;
+}
+
+TEST(RunLoop, TwoSittingsEqualOneRunBitForBitWithTheirSeries) {
+  const std::string text = sphere_scene();
+  Options o;
+  o.t_end = 4 * units::us;
+  o.sample_every = {2, 0, 0};
+  run::Run whole(text, "sphere", o, energy_hooks());
+  const Progress pw = whole.evolve();
+  EXPECT_EQ(pw.status, RunStatus::finished);
+  EXPECT_EQ(pw.steps, 10);
+
+  o.checkpoint = temp_path("two_sittings.h5");
+  std::filesystem::remove(o.checkpoint);
+  o.until = 1.6 * units::us;
+  {
+    run::Run first(text, "sphere", o, energy_hooks());
+    EXPECT_FALSE(first.continued());
+    const Progress p = first.evolve();
+    EXPECT_EQ(p.status, RunStatus::running);
+    EXPECT_EQ(p.steps, 4);
+  }
+  o.until = INFINITY;
+  run::Run second(text, "sphere", o, energy_hooks());
+  ASSERT_TRUE(second.continued());
+  EXPECT_EQ(second.ib().step_count(), 4);
+  const Progress p = second.evolve();
+  EXPECT_EQ(p.status, RunStatus::finished);
+  EXPECT_EQ(p.steps_timed, 10);  // the wall time and steps of both sittings
+  const host_vector<double> a = whole.ib().batch(0).state().storage(), b = second.ib().batch(0).state().storage();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], b[k]) << k;
+  // Samples at t = 0 and after steps 2, 4, ..., 10, none twice.
+  const Series& sw = whole.series("energy");
+  const Series& s2 = second.series("energy");
+  ASSERT_EQ(sw.rows.size(), 6u);
+  ASSERT_EQ(s2.rows.size(), sw.rows.size());
+  for (std::size_t r = 0; r < sw.rows.size(); ++r) EXPECT_EQ(sw.rows[r], s2.rows[r]) << r;
+  EXPECT_EQ(s2.columns, (std::vector<std::string>{"t_s", "kinetic_energy_erg"}));
+}
+
+TEST(RunLoop, AFinishedRunIsACheckpointMarkedFinishedAndIsNotSteppedAgain) {
+  const std::string text = sphere_scene("0.4 us", "0.8 us");
+  Options o;
+  o.t_end = 0.8 * units::us;
+  o.checkpoint = temp_path("finished.h5");
+  std::filesystem::remove(o.checkpoint);
+  run::Run(text, "sphere", o, energy_hooks()).evolve();
+  EXPECT_EQ(io::read_checkpoint(o.checkpoint).record.status, RunStatus::finished);
+  run::Run again(text, "sphere", o, energy_hooks());
+  ASSERT_TRUE(again.continued());
+  const Progress p = again.evolve();
+  EXPECT_EQ(p.status, RunStatus::finished);
+  EXPECT_EQ(p.sitting_steps, 0);
+  EXPECT_EQ(p.steps, 2);
+  // Another scene text is another run: the checkpoint is not used.
+  run::Run other(sphere_scene("0.2 us", "0.8 us"), "sphere", o, energy_hooks());
+  EXPECT_FALSE(other.continued());
+}
+
+TEST(RunLoop, ANumericalStopKeepsTheLastGoodStateItsMessageAndItsCause) {
+  // Stretched by 2 with a 1 ms step: eq. 5.4 refuses the first step.
+  const std::string text = sphere_scene("1 ms", "4 ms", "[2, 1, 0.5]");
+  Options o;
+  o.t_end = 4e-3;
+  o.checkpoint = temp_path("stopped.h5");
+  std::filesystem::remove(o.checkpoint);
+  run::Run run(text, "sphere", o, energy_hooks());
+  const dvec before = run.ib().batch(0).state().storage();
+  const Progress p = run.evolve();
+  EXPECT_EQ(p.status, RunStatus::stopped);
+  ASSERT_TRUE(p.stop_cause.has_value());
+  EXPECT_EQ(*p.stop_cause, Cause::stopping_condition);
+  EXPECT_NE(p.stop_message.find("eq. 5.4"), std::string::npos) << p.stop_message;
+  const io::Checkpoint k = io::read_checkpoint(o.checkpoint);
+  EXPECT_EQ(k.record.status, RunStatus::stopped);
+  EXPECT_EQ(k.record.stop_cause, Cause::stopping_condition);
+  EXPECT_EQ(k.state.steps, 0);
+  const host_vector<double> a = before, b = k.state.batches.at(0);
+  for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << i;
+  run::Run again(text, "sphere", o, energy_hooks());
+  EXPECT_EQ(again.evolve().status, RunStatus::stopped);
+  EXPECT_EQ(again.progress().sitting_steps, 0);
+}
+
+TEST(RunLoop, CadencesBySimulatedTimeFireAtItsMultiples) {
+  const std::string text = sphere_scene("0.4 us", "4 us");
+  Options o;
+  o.t_end = 4 * units::us;
+  o.sample_every = {0, 1.2 * units::us, 0};  // after the steps reaching 1.2, 2.4, 3.6 us, and the end
+  run::Run run(text, "sphere", o, energy_hooks());
+  run.evolve();
+  const Series& s = run.series("energy");
+  ASSERT_EQ(s.rows.size(), 5u);
+  const double expected[5] = {0, 1.2e-6, 2.4e-6, 3.6e-6, 4.0e-6};
+  for (int r = 0; r < 5; ++r) EXPECT_NEAR(s.rows[std::size_t(r)][0], expected[r], 1e-15) << r;
+}
+
+TEST(RunLoop, ASittingLimitOfZeroTakesNoStepAndKeepsACheckpoint) {
+  const std::string text = sphere_scene();
+  Options o;
+  o.t_end = 4 * units::us;
+  o.sitting = 0;
+  o.checkpoint = temp_path("sitting.h5");
+  std::filesystem::remove(o.checkpoint);
+  const Progress p = run::Run(text, "sphere", o, energy_hooks()).evolve();
+  EXPECT_EQ(p.status, RunStatus::running);
+  EXPECT_EQ(p.steps, 0);
+  EXPECT_TRUE(std::filesystem::exists(o.checkpoint));
+  EXPECT_EQ(io::read_checkpoint(o.checkpoint).state.steps, 0);
+}
+
+TEST(RunLoop, SeriesOfAnyRowWidthSurviveTheCheckpoint) {
+  const std::string text = sphere_scene("0.4 us", "0.4 us");
+  Options o;
+  o.t_end = 0.4 * units::us;
+  o.checkpoint = temp_path("series.h5");
+  std::filesystem::remove(o.checkpoint);
+  Hooks h;
+  h.sample = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport*, SeriesSet& s) {
+    s["ragged"].rows.push_back(std::vector<double>(std::size_t(ib.step_count() + 1), ib.time()));
+    s["empty"];
+  };
+  run::Run(text, "sphere", o, h).evolve();
+  const io::Checkpoint k = io::read_checkpoint(o.checkpoint);
+  ASSERT_EQ(k.record.series.count("ragged"), 1u);
+  const Series& r = k.record.series.at("ragged");
+  ASSERT_EQ(r.rows.size(), 2u);
+  EXPECT_EQ(r.rows[0].size(), 1u);
+  EXPECT_EQ(r.rows[1].size(), 2u);
+  EXPECT_EQ(r.rows[1][1], k.state.fluid.t);
+  EXPECT_TRUE(r.columns.empty());
+  ASSERT_EQ(k.record.series.count("empty"), 1u);
+  EXPECT_TRUE(k.record.series.at("empty").rows.empty());
+}
+
+}  // namespace
+}  // namespace rbfib::run
