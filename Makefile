@@ -3,6 +3,7 @@
 BUILD      ?= build
 BUILD_CUDA ?= build-cuda
 SCALE      ?= quick
+# SITTING=SECONDS: the wall time one sitting of full-scale runs may take (they continue next time)
 PY         := /usr/bin/python3
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
@@ -21,7 +22,7 @@ NVCC := $(firstword $(wildcard /usr/local/cuda/bin/nvcc) $(shell command -v nvcc
 
 help:
 	@echo "make reproduce          every implemented study at SCALE=$(SCALE) -> reports/"
-	@echo "make reproduce-NAME     one study or chapter (appendixA, chapter2, ...), e.g. SCALE=full"
+	@echo "make reproduce-NAME     one study or chapter (appendixA, chapter2, ...), e.g. SCALE=full SITTING=3600"
 	@echo "make test               install deps, build, run every test (unit, harness, studies at quick scale)"
 	@echo "make build-cuda         configure and build the CUDA backend (nvcc)"
 	@echo "make deps               install missing Debian packages"
@@ -62,10 +63,10 @@ test: build check-cuda
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 reproduce: build
-	$(PY) -m harness run all --scale $(SCALE) --build $(BUILD)
+	$(PY) -m harness run all --scale $(SCALE) --build $(BUILD) $(if $(SITTING),--sitting $(SITTING))
 
 reproduce-%: build
-	$(PY) -m harness run $* --scale $(SCALE) --build $(BUILD)
+	$(PY) -m harness run $* --scale $(SCALE) --build $(BUILD) $(if $(SITTING),--sitting $(SITTING))
 
 # The stored evaluation sites of the Chapter 3 study: N = 22, 44, 67 (n = 529, 2025, 4624).
 POINT_SET_DEGREES := 22 44 67

@@ -17,6 +17,16 @@ class Parser(argparse.ArgumentParser):
         raise HarnessError(message)
 
 
+def positive_seconds(text):
+    try:
+        v = float(text)
+    except ValueError:
+        v = float("nan")
+    if not v > 0:
+        raise HarnessError(f"--sitting = '{text}': must be a positive number of seconds")
+    return v
+
+
 def parse(argv):
     p = Parser(prog="python3 -m harness", description="Run rbfib studies, compare with reference/, render reports/.")
     sub = p.add_subparsers(dest="command", required=True)
@@ -26,6 +36,9 @@ def parse(argv):
     r.add_argument("--build", default=os.path.join(ROOT, "build"), help="CMake build directory with studies/")
     r.add_argument("--out", default=os.path.join(ROOT, "runs"), help="where run directories go")
     r.add_argument("--reports", default=os.path.join(ROOT, "reports"), help="where reports go")
+    r.add_argument("--sitting", type=positive_seconds, default=None,
+                   help="wall seconds this sitting may take: runs kept over sittings then save their checkpoints "
+                        "and report how far they came (default: no limit)")
     r.add_argument("--no-run", action="store_true", help="render from the existing results.json, do not run the driver")
     r.add_argument("--gate", default="all", help="which failed checks fail the command: all (default: reports and "
                    "`make reproduce`) or correctness (`make test`: checks marked speed are printed, not gating)")
@@ -102,9 +115,14 @@ def run_study(meta, args):
         if core:
             env["OPENBLAS_CORETYPE"] = core
         info["openblas_coretype"] = env.get("OPENBLAS_CORETYPE", "unset (OpenBLAS's own detection)")
-        env["RBFIB_COMMIT"] = info["commit"]  # drivers that keep partial results record it with them
         info["driver_hash"] = catalog.driver_hash(ROOT, name)  # the sources that computed these results
-        proc = subprocess.run([exe, "--scale", args.scale, "--out", run_dir], env=env)
+        # The commit (drivers that keep partial runs record it with them), the source tree (stored
+        # inputs) and the sitting's wall time are the driver's options, not its environment.
+        command = [exe, "--scale", args.scale, "--out", run_dir, "--commit", info["commit"], "--source", ROOT]
+        if args.sitting:
+            command += ["--sitting", str(args.sitting)]
+            info["sitting_seconds"] = args.sitting
+        proc = subprocess.run(command, env=env)
         info["seconds"] = time.monotonic() - t0
         if proc.returncode != 0:
             raise HarnessError(f"study '{name}': driver exited with status {proc.returncode}")

@@ -23,9 +23,9 @@
 // (spacing h/2), where dt = 1e-4 s loses every run near t = 7 ms and dt = 5e-5 s does not (table
 // runs_eta96; the reference's conventions: grid). At full scale each run keeps a checkpoint
 // DIR/run_<label>_eta<eta>.bin (every 5 minutes of wall time and at its end) and continues from
-// it when the command is run again; RBFIB_SITTING_SECONDS (seconds) bounds this sitting's wall
-// time: runs left unfinished are reported with their time per step and projected time to solution.
-// RBFIB_CAPILLARY_KEEP=1 keeps checkpoints at quick scale too (to test resuming).
+// it when the command is run again; --sitting SECONDS bounds this sitting's wall time: runs left
+// unfinished are reported with their time per step and projected time to solution. --resumable
+// keeps checkpoints at quick scale too (to test resuming).
 //
 // Run:  build/studies/study_chapter3_capillary --scale quick --out runs/chapter3_capillary/quick
 //       (or python3 -m harness run chapter3_capillary --scale quick)
@@ -62,14 +62,14 @@ Json num(double x) { return std::isfinite(x) ? Json(x) : Json(); }
 struct Setup {
   const st::Options& opt;
   bool full;
-  bool keep;  ///< keep checkpoints (full scale, or RBFIB_CAPILLARY_KEEP=1 to test them)
+  bool keep;  ///< keep checkpoints (full scale, or --resumable to test them)
   int eta;
   index_t n;
   std::vector<int> flow_etas;  ///< grids of the empty-capillary study
   explicit Setup(const st::Options& o)
       : opt(o),
         full(o.scale == st::Scale::full),
-        keep(full || (std::getenv("RBFIB_CAPILLARY_KEEP") && std::string(std::getenv("RBFIB_CAPILLARY_KEEP")) == "1")),
+        keep(o.keeps_runs()),
         eta(full ? 64 : 48),
         n(full ? 8281 : 2049),
         flow_etas(full ? std::vector<int>{64, 96, 128} : std::vector<int>{32, 48, 64}) {}
@@ -125,7 +125,7 @@ void record(Json& results, const std::string& id, const Run& run) {
 /// Runs (or resumes, or reads back) one run; at full scale keeps its checkpoint.
 class Runner {
  public:
-  explicit Runner(const Setup& S) : S_(S) {}
+  explicit Runner(const Setup& S) : S_(S), sitting_(S.opt) {}
   double elapsed() const { return sitting_.elapsed(); }
 
   /// Advances `run` to its end (or to the sitting's budget). Returns whether it is over.
@@ -150,7 +150,7 @@ class Runner {
 
  private:
   const Setup& S_;
-  const st::Sitting sitting_;  // full scale: this sitting's wall time (RBFIB_SITTING_SECONDS)
+  const st::Sitting sitting_;  // full scale: this sitting's wall time (--sitting)
 };
 
 // ---- shape measures ------------------------------------------------------------------------------
@@ -596,7 +596,7 @@ int main(int argc, char** argv) {
       auto it = md_sets.find(cc.md_degree);
       if (it == md_sets.end()) {
         const std::string file =
-            st::source_path("reference/point_sets/max_determinant_N" + to_text(cc.md_degree) + ".txt");
+            st::source_path(opt, "reference/point_sets/max_determinant_N" + to_text(cc.md_degree) + ".txt");
         it = md_sets.emplace(cc.md_degree, chapter3::make_md_evaluation_set(file, cc.md_degree)).first;
         st::log(opt, "MD evaluation set N = " + to_text(cc.md_degree) + " (eq. 45 weights) in " +
                          to_text(it->second.seconds) + " s");

@@ -203,7 +203,7 @@ RelaxationResult relax_shvd_at_site(const RelaxationSpec& spec, const Evaluation
 
 /// The runs of the study: each computed once per invocation; at full scale also kept in
 /// DIR/run_<label>.txt (written atomically, with the commit that computed it) and read back from
-/// there, so that the full scale can be completed over several sittings (RBFIB_SITTING_SECONDS:
+/// there, so that the full scale can be completed over several sittings (--sitting SECONDS:
 /// no run is started once the sitting's time is spent; the one in progress runs to its end). Runs
 /// are counted in groups (group()), recorded as results["runs"][group] (record()): a group is
 /// finished when every run asked of it was computed or read back.
@@ -213,7 +213,7 @@ RelaxationResult relax_shvd_at_site(const RelaxationSpec& spec, const Evaluation
 /// lockstep runs; B = 0 otherwise), then one line per sample "t d_axis r_max r_min volume".
 class Runs {
  public:
-  explicit Runs(const st::Options& opt) : opt_(opt), keep_(opt.scale == st::Scale::full) {
+  explicit Runs(const st::Options& opt) : opt_(opt), keep_(opt.scale == st::Scale::full), sitting_(opt) {
     skipped_.force_integral0 = skipped_.max_force0 = NAN;
   }
 
@@ -236,8 +236,8 @@ class Runs {
            to_text(std::lround(1 / s.dt)) + "_steps" + to_text(s.steps) + "_every" + to_text(s.record_every);
   }
 
-  static std::string md_file(int N) {
-    return st::source_path("reference/point_sets/max_determinant_N" + to_text(N) + ".txt");
+  std::string md_file(int N) const {
+    return st::source_path(opt_, "reference/point_sets/max_determinant_N" + to_text(N) + ".txt");
   }
 
   /// The stored maximal-determinant-like set of degree N with the weights of eq. (45).
@@ -410,7 +410,7 @@ class Runs {
     {
       std::ofstream f(tmp);
       f.precision(17);
-      f << "rbfib chapter3_dynamics run v2 " << label << " " << st::source_commit() << "\n";
+      f << "rbfib chapter3_dynamics run v2 " << label << " " << st::source_commit(opt_) << "\n";
       const PhaseTimes& p = r.phases;
       f << r.steps << " " << int(r.failed) << " " << r.seconds << " " << p.forces << " " << p.spread << " " << p.solve
         << " " << p.interpolate << " " << p.update << " " << p.force_products << " " << r.force_integral0 << " "
@@ -675,8 +675,8 @@ void fig5_rightmost(const Setup& S, Runs& runs, Json& T, Json& V) {
     const RelaxationResult& bx = runs.get(S.spec(m, S.ellipsoid, ref, S.fig5_t, S.fig5_M, 12), S.n_for(ref), "ellipsoid");
     const bool ok = !a.failed && !b.failed;
     md["rows"].push(row({to_string(m), eta, double((N + 1) * (N + 1)),
-                         rightmost_offset(surface::read_sphere_sites(Runs::md_file(N))), ok ? num(a.d_axis()) : Json(), ref,
-                         double((N_ref + 1) * (N_ref + 1)), rightmost_offset(surface::read_sphere_sites(Runs::md_file(N_ref))),
+                         rightmost_offset(surface::read_sphere_sites(runs.md_file(N))), ok ? num(a.d_axis()) : Json(), ref,
+                         double((N_ref + 1) * (N_ref + 1)), rightmost_offset(surface::read_sphere_sites(runs.md_file(N_ref))),
                          ok ? num(b.d_axis()) : Json(), ok ? num(std::abs(a.d_axis() - b.d_axis())) : Json(),
                          num(std::abs(as.d_axis() - bs.d_axis())), num(std::abs(ax.d_axis() - bx.d_axis()))}));
   }

@@ -115,13 +115,13 @@ EvalSet with_rbf_weights(const EvalSet& base, const std::string& points) {
 }
 
 /// "MD" (stored sites, eq. 45 weights) or "spiral" (Bauer spiral, eq. 2.22 weights).
-EvalSet make_eval_set(const std::string& points, index_t n) {
+EvalSet make_eval_set(const st::Options& opt, const std::string& points, index_t n) {
   EvalSet e;
   e.points = points;
   e.n = n;
   if (points == "MD") {
     const int N = static_cast<int>(std::lround(std::sqrt(double(n)))) - 1;
-    const std::string file = st::source_path("reference/point_sets/max_determinant_N" + to_text(N) + ".txt");
+    const std::string file = st::source_path(opt, "reference/point_sets/max_determinant_N" + to_text(N) + ".txt");
     e.sites = read_sphere_sites(file);
     if (e.sites.size() != n)
       throw InputError(file, to_text(e.sites.size()) + " sites", "expected (N+1)^2 = " + to_text(n));
@@ -205,7 +205,7 @@ int main(int argc, char** argv) {
       for (index_t n : ns) {
         const auto t0 = std::chrono::steady_clock::now();
         EvalSet made = points == "MD_rbf_weights" ? with_rbf_weights(sets.at({"MD", n}), points)
-                                                  : make_eval_set(points, n);
+                                                  : make_eval_set(opt, points, n);
         const EvalSet& e = sets.emplace(std::make_pair(points, n), std::move(made)).first->second;
         const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         double qi[2] = {0, 0};

@@ -50,12 +50,12 @@
 // DIR/<setup>/<orientation>/ with its scene (scene.yaml, built by scene::parse_scene +
 // scene::build; `build/bin/rbfib run` reruns it) and its series (series.csv, outlines.csv,
 // shapes.csv). Full scale is resumable: a checkpoint (checkpoint.h5, io/checkpoint.hpp) every
-// 1000 steps at h = 0.5 um and 200 at h = 0.2 um and at the end of a sitting (RBFIB_SITTING_SECONDS
+// 1000 steps at h = 0.5 um and 200 at h = 0.2 um and at the end of a sitting (--sitting SECONDS
 // of wall time, st::Sitting), and status.txt once the run has ended; running the same command
 // again continues each unfinished run from its checkpoint. Quick scale always starts afresh.
 //
 // Run:   build/studies/study_chapter5_collision --scale quick --out runs/chapter5_collision/quick
-//        RBFIB_SITTING_SECONDS=3600 build/studies/study_chapter5_collision --scale full
+//        build/studies/study_chapter5_collision --scale full --sitting 3600
 //          --out runs/chapter5_collision/full   (one hour of steps, then the state of every run)
 #include "common/study.hpp"
 #include "rbfib/cells/batch.hpp"
@@ -642,7 +642,7 @@ int main(int argc, char** argv) {
     if (full) setups.insert(setups.end(), {text_viscosity, seed});
     const std::string own = full ? seed.label : coarse.label;  // the scale's own resolution, for the time per step
     const double A0 = reference_area();
-    const st::Sitting sitting;  // full scale: the wall time of this sitting (RBFIB_SITTING_SECONDS)
+    const st::Sitting sitting(opt);  // full scale: the wall time of this sitting (--sitting)
     Json results = st::make_results(opt);
     Json& P = results["parameters"];
     P["box_um"] = "16 x 16 x 16; walls at rest in y, periodic in x and z; fluid at rest initially";

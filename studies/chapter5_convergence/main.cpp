@@ -118,7 +118,7 @@ Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& 
 /// At full scale each finished grid is kept in DIR/grid_r<r>.bin, written atomically (a
 /// temporary file, then a rename), so that the hours-long run continues from the grids it has
 /// when the same command is run again. Layout: one text line "rbfib chapter5_convergence grid
-/// <commit>" (the commit that computed it, from RBFIB_COMMIT, set by the harness), then binary
+/// <commit>" (the commit that computed it, from --commit, passed by the harness), then binary
 /// doubles: t_end, r, steps, seconds, volume change, u at the cell centres, X at the evaluation
 /// points. Quick scale always recomputes (minutes), so a code change is never hidden by old grids.
 std::string grid_file(const st::Options& opt, int r) { return opt.out_dir + "/grid_r" + std::to_string(r) + ".bin"; }
@@ -273,7 +273,7 @@ int main(int argc, char** argv) {
 
     // ---- 2. Runs ---------------------------------------------------------------------------------
     std::vector<Run> runs;
-    const st::Sitting sitting;  // full scale: no new grid is started once this sitting's time is spent
+    const st::Sitting sitting(opt);  // full scale: no new grid is started once this sitting's time is spent
     for (int r = 1; r <= r_max; ++r) {
       Run run;
       if (!full || !load_grid(opt, r, t_end, nc, eval.size(), run)) {
@@ -282,7 +282,7 @@ int main(int argc, char** argv) {
           break;
         }
         run = relax(r, t_end, centres, eval, opt);
-        run.commit = st::source_commit();
+        run.commit = st::source_commit(opt);
         if (full) save_grid(opt, run, t_end);
       }
       runs.push_back(std::move(run));

@@ -173,7 +173,7 @@ int main(int argc, char** argv) {
 
     st::SceneRunHooks hooks;
     hooks.sample = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib); };
-    const st::Sitting sitting;  // full scale: a sitting's wall time
+    const st::Sitting sitting(opt);  // full scale: a sitting's wall time
     const st::SceneRun run = st::run_scene(scene_text(s), "platelets", every, full, opt, hooks, sitting.remaining());
 
     // ---- Analysis ---------------------------------------------------------------------------

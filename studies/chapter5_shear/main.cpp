@@ -383,7 +383,7 @@ int main(int argc, char** argv) {
     Json outl = st::table({"rate_1_s", "mu_cP", "t_ms", "z_um", "y_um"}, {"1/s", "cP", "ms", "um", "um"});
     // The dt scan's short runs first (section 2): at full scale they are done in the first sitting
     // and the runs share what is left of each.
-    const st::Sitting sitting;  // full scale: a sitting's wall time, shared by the runs still to come
+    const st::Sitting sitting(opt);  // full scale: a sitting's wall time, shared by the runs still to come
     std::size_t jobs_left = scan_steps.size() + 1 + cases.size();
     std::vector<Run> members;
     for (double d : scan_steps)

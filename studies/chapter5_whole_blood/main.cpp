@@ -25,7 +25,7 @@
 //   full:  the seed's sizes (h = 0.2 um, red cells 2,500 / 10,000 sites, platelets 900 / 900,
 //          16,000 endothelium points, dt = 50 ns), 4 starting times, 40 ms per run over the bumpy
 //          wall and 60 ms over the flat one (the seed's flat-wall unicycling 'lasted over 40 ms'),
-//          continued from checkpoints; RBFIB_SITTING_SECONDS limits one sitting's wall time;
+//          continued from checkpoints; --sitting SECONDS limits one sitting's wall time;
 //   quick: h = 0.4 um, red cells 400 / 1,600, platelets 400 / 400, 4,096 endothelium points (the
 //          seed's spacing in units of h), dt = 100 ns (the tethers' explicit limit is about
 //          2 mu / (k n_A h), n_A points per area: 128 ns here, 64 ns at the seed's h); the
@@ -357,7 +357,7 @@ int main(int argc, char** argv) {
     const Setup s = full ? Setup{0.2 * um, 50 * units::ns, 2500, 10000, 900, 16000, 7.2 * ms, 17 * ms, 3 * ms, 40 * ms, 60 * ms, 4, {flat, bumpy}, 400}
                          : Setup{0.4 * um, 100 * units::ns, 400, 1600, 400, 4096, 20 * us, 30 * us, 10 * us, 80 * us, 80 * us, 1, {bumpy}, 10};
     auto window = [&](const Wall& w) { return w.bump > 0 ? s.window : s.flat_window; };
-    const st::Sitting sitting;  // full scale: this sitting's wall time
+    const st::Sitting sitting(opt);  // full scale: this sitting's wall time
     auto remaining = [&] { return sitting.remaining(); };
 
     Json results = st::make_results(opt);

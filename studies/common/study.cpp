@@ -27,20 +27,41 @@ Options parse_command_line(int argc, char** argv, const std::string& name, const
     std::cerr << name << ": " << msg << " (try --help)\n";
     std::exit(2);
   };
+  auto value = [&](int& i, const std::string& a, const char* what) -> std::string {
+    if (++i >= argc) fail(a + " needs " + what);
+    return argv[i];
+  };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
-      std::cout << "usage: study_" << name << " [--scale quick|full] [--out DIR]\n" << description << "\n";
+      std::cout << "usage: study_" << name << " [--scale quick|full] [--out DIR] [--sitting SECONDS] [--resumable] [--commit HASH] [--source DIR]\n"
+                << description << "\n"
+                << "  --scale      quick (CI sizes, default) or full (the paper's sizes)\n"
+                << "  --out        the directory for results.json and the runs' files (default .)\n"
+                << "  --sitting    wall seconds this sitting may take: runs kept over sittings then save their\n"
+                << "               checkpoints and report how far they came (default: no limit)\n"
+                << "  --resumable  keep checkpoints at quick scale too (full scale always keeps them)\n"
+                << "  --commit     the commit that built this driver, kept with saved runs\n"
+                << "  --source     the source tree for stored inputs (default: the configured one)\n";
       std::exit(0);
     } else if (a == "--scale") {
-      if (++i >= argc) fail("--scale needs a value: quick or full");
-      const std::string s = argv[i];
+      const std::string s = value(i, a, "a value: quick or full");
       if (s == "quick") opt.scale = Scale::quick;
       else if (s == "full") opt.scale = Scale::full;
       else fail("--scale = '" + s + "' is not one of: quick, full");
     } else if (a == "--out") {
-      if (++i >= argc) fail("--out needs a directory");
-      opt.out_dir = argv[i];
+      opt.out_dir = value(i, a, "a directory");
+    } else if (a == "--sitting") {
+      const std::string v = value(i, a, "a number of seconds");
+      char* end = nullptr;
+      opt.sitting = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(opt.sitting > 0)) fail("--sitting = '" + v + "' must be a positive number of seconds");
+    } else if (a == "--resumable") {
+      opt.resumable = true;
+    } else if (a == "--commit") {
+      opt.commit = value(i, a, "a commit");
+    } else if (a == "--source") {
+      opt.source_dir = value(i, a, "a directory");
     } else {
       fail("unknown argument '" + a + "'");
     }
@@ -113,22 +134,13 @@ void record_run(Json& results, const std::string& id, const RunProgress& p) {
 
 void log(const Options& opt, const std::string& message) { std::cout << "[" << opt.name << "] " << message << std::endl; }
 
-Sitting::Sitting() : limit_(INFINITY), start_(std::chrono::steady_clock::now()) {
-  if (const char* v = std::getenv("RBFIB_SITTING_SECONDS")) {
-    char* end = nullptr;
-    limit_ = std::strtod(v, &end);
-    if (end == v || *end != '\0' || !(limit_ > 0)) throw InputError("RBFIB_SITTING_SECONDS", v, "must be a positive number of seconds");
-  }
-}
+Sitting::Sitting(const Options& opt) : limit_(opt.sitting), start_(std::chrono::steady_clock::now()) {}
 
 double Sitting::elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
 
 double Sitting::remaining() const { return limit_ - elapsed(); }
 
-std::string source_commit() {
-  const char* c = std::getenv("RBFIB_COMMIT");
-  return c && *c ? c : "unknown";
-}
+std::string source_commit(const Options& opt) { return opt.commit; }
 
 double slope(const std::vector<double>& x, const std::vector<double>& y) {
   const std::size_t n = x.size();
@@ -197,9 +209,8 @@ int run_main(const std::string& name, const std::function<int()>& body) {
   }
 }
 
-std::string source_path(const std::string& relative) {
-  const char* root = std::getenv("RBFIB_ROOT");
-  return std::string(root && *root ? root : RBFIB_SOURCE_DIR) + "/" + relative;
+std::string source_path(const Options& opt, const std::string& relative) {
+  return (opt.source_dir.empty() ? std::string(RBFIB_SOURCE_DIR) : opt.source_dir) + "/" + relative;
 }
 
 }  // namespace rbfib::study

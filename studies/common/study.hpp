@@ -18,9 +18,15 @@ struct Options {
   std::string name;
   Scale scale = Scale::quick;
   std::string out_dir = ".";
+  double sitting = INFINITY;    ///< --sitting: wall seconds of this sitting for runs kept over sittings
+  bool resumable = false;       ///< --resumable: keep checkpoints at quick scale too (full scale always does)
+  std::string commit = "unknown";  ///< --commit: the commit that built this driver (the harness passes it)
+  std::string source_dir;       ///< --source: the source tree (stored inputs); default: the configured one
+  bool keeps_runs() const { return scale == Scale::full || resumable; }
 };
 
-/// Parses argv; prints usage and exits 0 on --help; prints one line and exits 2 on bad input.
+/// Parses argv (--scale quick|full, --out DIR, --sitting SECONDS, --resumable, --commit HASH,
+/// --source DIR); prints usage and exits 0 on --help; prints one line and exits 2 on bad input.
 Options parse_command_line(int argc, char** argv, const std::string& name, const std::string& description);
 
 const char* to_string(Scale s);
@@ -34,16 +40,15 @@ Json make_results(const Options& opt);
 /// Writes results to <out_dir>/results.json and says where.
 void write_results(const Options& opt, const Json& results);
 
-/// The commit the harness says built this driver (RBFIB_COMMIT), or "unknown": kept with saved
+/// The commit the harness says built this driver (--commit), or "unknown": kept with saved
 /// full-scale runs so that a result is traced to the code that computed it.
-std::string source_commit();
+std::string source_commit(const Options& opt);
 
 /// A sitting: wall seconds from now that a full-scale run continued over several sittings may take
-/// before it saves its checkpoint and reports what it has (RBFIB_SITTING_SECONDS; unset: no limit).
-/// Throws InputError for a value that is not a positive number.
+/// before it saves its checkpoint and reports what it has (--sitting; unset: no limit).
 class Sitting {
  public:
-  Sitting();
+  explicit Sitting(const Options& opt);
   double remaining() const;  ///< s (infinite without a limit)
   double elapsed() const;    ///< s since the sitting began
  private:
@@ -90,9 +95,9 @@ double best_seconds(int repeats, const std::function<void()>& fn);
 /// every cache.
 double triad_seconds(long long n);
 
-/// The path of a file in the source tree (stored inputs such as reference/point_sets/...):
-/// $RBFIB_ROOT/relative when that variable is set, else relative to the configured source tree.
-std::string source_path(const std::string& relative);
+/// The path of a file in the source tree (stored inputs such as reference/point_sets/...): under
+/// --source when given, else under the configured source tree.
+std::string source_path(const Options& opt, const std::string& relative);
 
 /// Runs body, turning any exception into one line on stderr and exit status 1.
 int run_main(const std::string& name, const std::function<int()>& body);
