@@ -1,4 +1,5 @@
 #include "capillary_run.hpp"
+#include "rbfib/core/constants.hpp"
 
 #include "rbfib/cells/shapes.hpp"
 #include "rbfib/core/error.hpp"
@@ -187,14 +188,14 @@ struct Run::Impl {
   /// Nodes on the cylinder at the centres of equal patches: `around` x `along` of them.
   void make_capillary() {
     const double s = m.cap_spacing > 0 ? m.cap_spacing : m.h() / 2;
-    around = std::max(8, int(std::lround(2 * M_PI * m.R_cap / s)));
+    around = std::max(8, int(std::lround(2 * pi * m.R_cap / s)));
     along = std::max(2, int(std::lround((m.x1_cap - m.x0_cap) / s)));
     const index_t n = index_t(around) * along;
     Zcap.assign(static_cast<std::size_t>(3 * n), 0.0);
     for (int j = 0; j < along; ++j)
       for (int i = 0; i < around; ++i) {
         const index_t q = index_t(j) * around + i;
-        const double phi = 2 * M_PI * (i + 0.5 * (j % 2)) / around;  // staggered rings
+        const double phi = 2 * pi * (i + 0.5 * (j % 2)) / around;  // staggered rings
         Zcap[q] = m.x0_cap + (m.x1_cap - m.x0_cap) * (j + 0.5) / along;
         Zcap[n + q] = m.R_cap * std::cos(phi);
         Zcap[2 * n + q] = m.R_cap * std::sin(phi);

@@ -30,6 +30,7 @@
 // Run:  build/studies/study_chapter3_capillary --scale quick --out runs/chapter3_capillary/quick
 //       (or python3 -m harness run chapter3_capillary --scale quick)
 #include "capillary_run.hpp"
+#include "rbfib/core/constants.hpp"
 #include "common/study.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/io/hdf5.hpp"
@@ -179,7 +180,7 @@ FrontH front_curvature(const View& v, const double c[3]) {
   double s = 0, s2 = 0;
   int npos = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    if (!(v.normal[i] > std::cos(M_PI / 4)) || !(v.X[i] > c[0]) || !std::isfinite(v.H[i])) continue;
+    if (!(v.normal[i] > std::cos(pi / 4)) || !(v.X[i] > c[0]) || !std::isfinite(v.H[i])) continue;
     s += v.H[i];
     s2 += v.H[i] * v.H[i];
     npos += v.H[i] > 0;
@@ -208,7 +209,7 @@ Asymmetry asymmetry(const View& v, const surface::SphereSites& sites, const std:
   Asymmetry a;
   const std::size_t n = v.X.size() / 3;
   const int bands = std::max(8, int(std::lround(std::sqrt(double(n)) / 2.5)));
-  const double lo = 15 * M_PI / 180, hi = 165 * M_PI / 180;
+  const double lo = 15 * pi / 180, hi = 165 * pi / 180;
   std::vector<double> alpha(n), rho(n), nrho(n), dev(n, NAN);
   std::vector<int> band(n, -1);
   for (std::size_t i = 0; i < n; ++i) {
@@ -275,7 +276,7 @@ struct ForceMeasures {
 double nonaxisymmetric_rms(const std::vector<double>& q, const surface::SphereSites& sites) {
   const std::size_t n = q.size();
   const int bands = std::max(8, int(std::lround(std::sqrt(double(n)) / 2.5)));
-  const double lo = 15 * M_PI / 180, hi = 165 * M_PI / 180;
+  const double lo = 15 * pi / 180, hi = 165 * pi / 180;
   std::vector<std::vector<std::size_t>> members(bands);
   std::vector<double> alpha(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -311,7 +312,7 @@ ForceMeasures force_measures(const View& v, const std::vector<surface::Triangle>
   int nb = 0;
   for (std::size_t i = 0; i < n; ++i) {
     s += v.f[i];
-    if (v.normal[i] < -std::cos(M_PI / 4) && v.X[i] < c[0]) {
+    if (v.normal[i] < -std::cos(pi / 4) && v.X[i] < c[0]) {
       sb += v.f[i];
       ++nb;
     }

@@ -26,6 +26,7 @@
 // F_E from eq. (35) on the exact map (88)/(89) and dA0 the evaluation sites' quadrature weights; the
 // error is max_i ||F^ - F^_E||_inf (eqs. 90-91), also divided by max_i ||F^_E,i||_inf.
 #include "common/study.hpp"
+#include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/mechanics/ldsm.hpp"
 #include "rbfib/mechanics/shell.hpp"
@@ -50,7 +51,6 @@ namespace st = rbfib::study;
 using rbfib::study::Json;
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 
 Json::Array row(std::initializer_list<Json> xs) { return Json::Array(xs); }
 

@@ -11,6 +11,7 @@
 //
 // Run:   build/studies/study_chapter3_stokes --scale quick --out runs/chapter3_stokes
 #include "common/study.hpp"
+#include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/fluid/periodic_stokes.hpp"
@@ -23,7 +24,6 @@ namespace st = rbfib::study;
 using st::Json;
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 
 /// The exact flow (velocity, pressure gradient) of the header.
 struct ExactFlow {

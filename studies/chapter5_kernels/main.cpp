@@ -15,6 +15,7 @@
 //
 // Run:   build/studies/study_chapter5_kernels --scale quick --out runs/chapter5_kernels
 #include "common/study.hpp"
+#include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/ib/interaction.hpp"
@@ -33,7 +34,6 @@ namespace st = rbfib::study;
 using st::Json;
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 const double L = 16 * units::um;  // the periodic box [0, L)^3
 const double k = 2 * pi / L;
 

@@ -23,6 +23,7 @@
 //
 // Run:   build/studies/study_chapter5_platelets --scale quick --out runs/chapter5_platelets
 #include "common/cell_shape.hpp"
+#include "rbfib/core/constants.hpp"
 #include "common/scene_run.hpp"
 #include "common/study.hpp"
 #include "rbfib/core/error.hpp"
@@ -36,7 +37,6 @@ using st::Json;
 using st::Vec3;
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 const double wall_y = 1 * units::um;        // the endothelium's plane
 const double gaps_um[2] = {0.3, 0.5};       // the seed's two platelets
 const double half_thickness = 0.5 * units::um;

@@ -27,6 +27,7 @@
 //
 // Run:   build/studies/study_chapter5_shear --scale quick --out runs/chapter5_shear
 #include "common/cell_shape.hpp"
+#include "rbfib/core/constants.hpp"
 #include "common/scene_run.hpp"
 #include "common/study.hpp"
 #include "rbfib/core/error.hpp"
@@ -46,7 +47,6 @@ using st::Json;
 using st::Vec3;
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 
 struct Setup {
   int cells = 0;  // grid cells per 16 um

@@ -1,4 +1,5 @@
 #include "chapter5_whole_blood/initialization.hpp"
+#include "rbfib/core/constants.hpp"
 
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
@@ -12,7 +13,6 @@ namespace rbfib::chapter5_whole_blood {
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
 
 /// A rotation as a unit quaternion (w, x, y, z).
 struct Quaternion {

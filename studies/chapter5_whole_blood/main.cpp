@@ -34,6 +34,7 @@
 //
 // Run:   build/studies/study_chapter5_whole_blood --scale quick --out runs/chapter5_whole_blood
 #include "chapter5_whole_blood/initialization.hpp"
+#include "rbfib/core/constants.hpp"
 #include "common/cell_shape.hpp"
 #include "common/scene_run.hpp"
 #include "common/study.hpp"
@@ -60,7 +61,6 @@ using st::Json;
 using st::Vec3;
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 const double um = units::um, ms = units::ms, us = units::us;
 const double Lx = 16 * um, Ly = 12 * um, Lz = 16 * um;
 const double wall_speed = 1.6;              // cm/s: 16 mm/s (Sec. 5.2.1)

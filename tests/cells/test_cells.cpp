@@ -2,6 +2,7 @@
 // (mechanics/shell.hpp) for every energy, batches of identical cells, rigid motions, force
 // balance, diagnostics against closed forms, body forces, and named errors for bad cells.
 #include "../common/errors.hpp"
+#include "rbfib/core/constants.hpp"
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/error.hpp"
@@ -18,7 +19,6 @@ using namespace rbfib;
 using namespace rbfib::cells;
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 constexpr double um = 1e-4;
 
 /// Three placements: rotated, stretched (as Sec. 4.2.2.1) and translated.

@@ -3,6 +3,7 @@
 // same discrete systems (channel: periodic x, z with walls in y; triply periodic) to what the PCG
 // tolerance allows, with the residual at rounding; boxes they cannot handle are named.
 #include "../common/random_field.hpp"
+#include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/fluid/fourier_solver.hpp"
 #include "rbfib/fluid/helmholtz.hpp"
@@ -71,7 +72,6 @@ TEST(Fourier, TransformsInvertAndMatchTheDefinition) {
     F.forward(v);
     // Mode (1, 0, 2) (or (1, j, 2) per row j when y is batched) by the definition.
     const host_vector<linalg::complex> V = v;
-    const double pi = 3.14159265358979323846;
     for (int j = 0; j < (t[1] ? 1 : 5); ++j) {
       linalg::complex want(0, 0);
       for (int z = 0; z < 4; ++z)

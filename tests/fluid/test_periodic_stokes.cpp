@@ -3,6 +3,7 @@
 // for the pressure, Chebyshev PCG for each velocity component), and converges at second order to
 // an exact periodic Stokes flow.
 #include "../common/random_field.hpp"
+#include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/fluid/periodic_stokes.hpp"
 #include "rbfib/linalg/blas.hpp"
@@ -16,7 +17,6 @@ namespace {
 
 using MB = MacBoundary;
 using rbfib::testing::random_vector;
-constexpr double pi = 3.14159265358979323846;
 
 MacGrid periodic_box(int n, double L) {
   return make_mac_grid(3, {n, n + 2, n - 2}, {L, L * (n + 2) / n, L * (n - 2) / n}, {MB::periodic, MB::periodic, MB::periodic});

@@ -2,6 +2,7 @@
 // (eq. 84), LDSM (eq. 66) and tethers (eq. 2.10): forces are minus the derivative of the discrete
 // energy, translation-invariant forces sum to zero, closed forms hold, bad surfaces raise errors.
 #include "rbfib/core/error.hpp"
+#include "rbfib/core/constants.hpp"
 #include "rbfib/mechanics/ldsm.hpp"
 #include "rbfib/mechanics/shell.hpp"
 #include "rbfib/surface/harmonics.hpp"
@@ -18,7 +19,6 @@ using namespace rbfib::surface;
 using namespace rbfib::mechanics;
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 
 std::vector<EnergyDensity> all_energies() {
   return {EnergyDensity::skalak(1.0, 3.0), EnergyDensity::neo_hookean_dissertation(1.0, 2.0),

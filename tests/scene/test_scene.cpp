@@ -2,6 +2,7 @@
 // step as the same setup written in C++ (bit for bit over a few steps), and every kind of bad
 // input is an InputError naming the field (its path in the file) and the value.
 #include "../common/errors.hpp"
+#include "rbfib/core/constants.hpp"
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
@@ -221,7 +222,6 @@ TEST(Scene, AWallTurnsAsInSection521) {
     EXPECT_EQ(v[1], 0.0) << t;
     EXPECT_NEAR(v[2], c * std::cos(alpha), 1e-14) << t;
   };
-  const double pi = 3.14159265358979323846;
   expect_velocity(0, 0);
   expect_velocity(3.6e-3, pi / 8);
   expect_velocity(7.2e-3, pi / 4);
@@ -243,7 +243,7 @@ TEST(Scene, TheEndotheliumOfEquation55LiesOnTheToroidalSpiral) {
   const host_vector<double> X = s.point_sets[0].X;
   const std::size_t N = 16000;
   ASSERT_EQ(X.size(), 3 * N);
-  const double pi = 3.14159265358979323846, um = 1e-4;
+  const double um = 1e-4;
   double y_min = 1, y_max = 0, y_mean = 0;
   for (std::size_t i = 0; i < N; ++i) {
     const double phi = 2 * pi * double(i) / double(N);

@@ -2,6 +2,7 @@
 // extents of points on a known ellipsoid, the 3 x 3 eigenproblem, Jeffery's orbit against its
 // period and plane, angle unwrapping and least-squares fits.
 #include "common/cell_shape.hpp"
+#include "rbfib/core/constants.hpp"
 #include "common/study.hpp"
 #include "rbfib/core/error.hpp"
 
@@ -12,7 +13,6 @@
 namespace rbfib::study {
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
 
 TEST(CellShape, AxesAndExtentsOfARotatedEllipsoid) {
   // Points on an ellipsoid with semi-axes 3, 2, 1 along x, y, z, rotated by 30 deg about x, at (5, 6, 7).

@@ -1,6 +1,7 @@
 // Unit tests of the surface module: harmonics, point sets, interpolation operators, quadrature,
 // geometry and the triangulation, against closed forms.
 #include "rbfib/core/error.hpp"
+#include "rbfib/core/constants.hpp"
 #include "rbfib/surface/geometry.hpp"
 #include "rbfib/surface/harmonics.hpp"
 #include "rbfib/surface/operators.hpp"
@@ -20,7 +21,6 @@ using namespace rbfib;
 using namespace rbfib::surface;
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 constexpr double eps = std::numeric_limits<double>::epsilon();
 
 double legendre(int l, double x) {

@@ -14,12 +14,12 @@
 //      f = rho (u_t + (u . grad) u) - mu Lap u + grad p
 //    that makes it an exact solution; every derivative is taken analytically (TrigSum below).
 #include <array>
+#include "rbfib/core/constants.hpp"
 #include <cmath>
 #include <vector>
 
 namespace rbfib::exact {
 
-inline constexpr double pi = 3.14159265358979323846;
 
 /// c prod_d sin(k_d x_d + s_d): closed under differentiation.
 struct TrigTerm {

@@ -1,4 +1,5 @@
 #include "rbfib/fluid/fourier_solver.hpp"
+#include "rbfib/core/constants.hpp"
 
 #include "rbfib/core/error.hpp"
 #include "rbfib/fluid/poisson.hpp"
@@ -36,7 +37,6 @@ FourierSolver::FourierSolver(const Box& box, Correction correction, double alpha
   wall_ = box.dims >= 2 && !box.axes[1].periodic();
   const bool neumann_both = wall_ && s.axis[1].lo.ghost == 1.0 && s.axis[1].hi.ghost == 1.0;
   singular_ = alpha == 0 && (!wall_ || neumann_both);
-  const double pi = 3.14159265358979323846;
   for (int d = 0; d < 3; ++d) {
     const int n = box.n(d);
     host_vector<double> mu(static_cast<std::size_t>(n), 0.0);

@@ -1,4 +1,5 @@
 #include "rbfib/fluid/poisson.hpp"
+#include "rbfib/core/constants.hpp"
 
 #include "rbfib/fluid/helmholtz.hpp"
 
@@ -16,7 +17,6 @@ void remove_mean(dvec& x) {
 }
 
 double smallest_nonzero_eigenvalue(const Box& box) {
-  const double pi = 3.14159265358979323846;
   double lambda = INFINITY;
   for (int d = 0; d < box.dims; ++d) {
     const Axis& ax = box.axes[d];

@@ -1,4 +1,5 @@
 #include "rbfib/scene/scene.hpp"
+#include "rbfib/core/constants.hpp"
 
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/quantity.hpp"
@@ -21,7 +22,6 @@ namespace rbfib::scene {
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
 
 /// A type's reference shape at its data sites, n x 3 column-major (cm), without building it.
 std::vector<double> reference_sites(const CellTypeEntry& t) {

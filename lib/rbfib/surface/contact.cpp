@@ -1,11 +1,11 @@
 #include "rbfib/surface/contact.hpp"
+#include "rbfib/core/constants.hpp"
 
 #include <cmath>
 
 namespace rbfib::surface {
 
 double winding_number(const std::vector<double>& X, index_t n, const std::vector<Triangle>& tris, const std::array<double, 3>& p) {
-  constexpr double pi = 3.14159265358979323846;
   double omega = 0;
   for (const Triangle& t : tris) {
     double r[3][3], len[3];

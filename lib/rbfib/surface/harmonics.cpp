@@ -1,4 +1,5 @@
 #include "rbfib/surface/harmonics.hpp"
+#include "rbfib/core/constants.hpp"
 
 #include "rbfib/core/error.hpp"
 
@@ -9,7 +10,6 @@ namespace rbfib::surface {
 void real_harmonics(int M, double lambda, double theta, double* y, double* yl, double* yt,
                     double* yll, double* ylt, double* ytt) {
   require(M >= 0, "harmonic degree M", M, "must be >= 0");
-  const double pi = 3.14159265358979323846;
   const double x = std::sin(theta);  // cos(colatitude)
   const double s = std::cos(theta);  // sin(colatitude) >= 0
   const int w = M + 2;               // row width: k = 0..M+1 (k = l+1 holds zero)

@@ -1,4 +1,5 @@
 #include "rbfib/surface/point_sets.hpp"
+#include "rbfib/core/constants.hpp"
 
 #include "rbfib/core/error.hpp"
 #include "rbfib/surface/harmonics.hpp"
@@ -14,7 +15,6 @@
 namespace rbfib::surface {
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 double positive_mod(double a, double n) { return a - std::abs(n) * std::floor(a / std::abs(n)); }
 }  // namespace
 

@@ -1,4 +1,5 @@
 #include "rbfib/surface/quadrature.hpp"
+#include "rbfib/core/constants.hpp"
 
 #include "rbfib/core/error.hpp"
 #include "rbfib/linalg/dense.hpp"
@@ -11,7 +12,6 @@
 namespace rbfib::surface {
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 }
 
 RbfWeights rbf_sphere_weights(const SphereSites& sites, int power) {

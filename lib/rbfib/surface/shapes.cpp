@@ -1,4 +1,5 @@
 #include "rbfib/surface/shapes.hpp"
+#include "rbfib/core/constants.hpp"
 
 #include "rbfib/surface/point_sets.hpp"
 
@@ -7,7 +8,6 @@
 namespace rbfib::surface {
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 }
 
 Jet PerturbedEllipsoid::jet(double l, double t) const {
