@@ -134,9 +134,13 @@ void print_check(const scene::Scene& s) {
       R = std::max(R, std::hypot(x[0], x[1], x[2]));
     }
     std::cout << "  '" << t.spec.name << "': radius " << R / units::um << " um, Reynolds rho gdot R^2 / mu = " << rho * gdot * R * R / mu;
-    if (!t.spec.model.elastic.empty())
-      std::cout << ", capillary mu gdot R / G (G = " << t.spec.model.elastic[0].a << " dyn/cm, the first energy's shear modulus) = "
-                << mu * gdot * R / t.spec.model.elastic[0].a;
+    // The capillary number from the first energy that resists shear (a tension law does not).
+    for (const mechanics::EnergyDensity& e : t.spec.model.elastic)
+      if (e.shear_modulus() > 0) {
+        std::cout << ", capillary mu gdot R / G_s (G_s = " << e.shear_modulus() << " dyn/cm, the " << e.name()
+                  << " shear modulus " << e.parameters()[0].name << ") = " << mu * gdot * R / e.shear_modulus();
+        break;
+      }
     std::cout << "\n";
   }
   // Eq. 5.4: dt <= (1/4) sqrt(h rho / ||f||_inf), i.e. ||f||_inf <= h rho / (16 dt^2).

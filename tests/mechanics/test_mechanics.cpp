@@ -360,3 +360,25 @@ TEST(Tether, DampedSpringForceIsMinusTheEnergyGradient) {
   for (int d = 0; d < 3; ++d) EXPECT_DOUBLE_EQ(F[d], -2.0 * (X[d] - Xp[d]) - 0.5 * (U[d] - Up[d]));
   EXPECT_THROW(tether_force_density(X, Xp, {}, {}, -1.0, 0.0), InputError);
 }
+
+namespace rbfib::mechanics {
+namespace {
+
+TEST(EnergyLaws, NameTheirShearModulusAndParametersAsTheSceneDoes) {
+  // Skalak (2.11) and neo-Hookean (2.12): E is the shear modulus, G the bulk; (68): Gs and A;
+  // a tension law (72) resists no shear.
+  EXPECT_EQ(EnergyDensity::skalak(2.5e-3, 2.5e-1).shear_modulus(), 2.5e-3);
+  EXPECT_EQ(EnergyDensity::neo_hookean_dissertation(4e-3, 1e-1).shear_modulus(), 4e-3);
+  EXPECT_EQ(EnergyDensity::neo_hookean_paper(3e-3, 2.0).shear_modulus(), 3e-3);
+  EXPECT_EQ(EnergyDensity::surface_tension(4e-2).shear_modulus(), 0.0);
+  const std::vector<EnergyDensity::Parameter> p = EnergyDensity::skalak(2.5e-3, 2.5e-1).parameters();
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_STREQ(p[1].name, "G");
+  EXPECT_EQ(p[1].value, 2.5e-1);
+  EXPECT_STREQ(p[1].units, "dyn/cm");
+  EXPECT_STREQ(EnergyDensity::neo_hookean_paper(3e-3, 2.0).parameters()[1].units, "");
+  EXPECT_STREQ(EnergyDensity::surface_tension(4e-2).parameters()[0].name, "sigma");
+}
+
+}  // namespace
+}  // namespace rbfib::mechanics

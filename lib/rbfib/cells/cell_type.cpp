@@ -13,11 +13,10 @@ namespace rbfib::cells {
 std::string ForceModel::describe() const {
   std::string s;
   for (const auto& e : elastic) {
-    const bool two = e.kind != mechanics::EnergyKind::surface_tension;
-    const char* names[4][2] = {{"E", "G"}, {"E", "G"}, {"Gs", "A"}, {"sigma", ""}};
-    const auto* n = names[int(e.kind)];
-    s += (s.empty() ? "" : " + ") + e.name() + " (" + n[0] + " = " + to_text(e.a) + " dyn/cm" +
-         (two ? std::string(", ") + n[1] + " = " + to_text(e.b) + (e.kind == mechanics::EnergyKind::neo_hookean_paper ? "" : " dyn/cm") : "") + ")";
+    std::string p;
+    for (const mechanics::EnergyDensity::Parameter& q : e.parameters())
+      p += (p.empty() ? "" : ", ") + std::string(q.name) + " = " + to_text(q.value) + (*q.units ? std::string(" ") + q.units : "");
+    s += (s.empty() ? "" : " + ") + e.name() + " (" + p + ")";
   }
   if (bending())
     s += (s.empty() ? "" : " + ") + std::string("bending (kappa = ") + to_text(kappa) + " erg, H' = " +

@@ -23,6 +23,18 @@ EnergyDensity EnergyDensity::surface_tension(double sigma) {
   require(sigma >= 0, "surface tension sigma (dyn/cm)", sigma, "must be >= 0");
   return {EnergyKind::surface_tension, sigma, 0};
 }
+double EnergyDensity::shear_modulus() const { return kind == EnergyKind::surface_tension ? 0.0 : a; }
+
+std::vector<EnergyDensity::Parameter> EnergyDensity::parameters() const {
+  switch (kind) {
+    case EnergyKind::skalak:
+    case EnergyKind::neo_hookean_dissertation: return {{"E", a, "dyn/cm"}, {"G", b, "dyn/cm"}};
+    case EnergyKind::neo_hookean_paper: return {{"Gs", a, "dyn/cm"}, {"A", b, ""}};
+    case EnergyKind::surface_tension: return {{"sigma", a, "dyn/cm"}};
+  }
+  return {};
+}
+
 std::string EnergyDensity::name() const {
   switch (kind) {
     case EnergyKind::skalak: return "Skalak";

@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace rbfib::mechanics {
 
@@ -37,6 +38,16 @@ struct EnergyDensity {
   static EnergyDensity neo_hookean_paper(double Gs, double A);
   static EnergyDensity surface_tension(double sigma);
   std::string name() const;
+  /// The law's shear modulus (dyn/cm): E of Skalak (2.11) and of neo-Hookean (2.12), Gs of (68);
+  /// 0 for surface tension (72), which resists no shear.
+  double shear_modulus() const;
+  /// The law's parameters as the scene names them, with units: {"E", a, "dyn/cm"}, ...
+  struct Parameter {
+    const char* name;
+    double value;
+    const char* units;
+  };
+  std::vector<Parameter> parameters() const;
 
   RBFIB_HD InvariantDerivatives evaluate(double I1, double I2) const {
     InvariantDerivatives d{0, 0, 0, 0, 0, 0, true};
