@@ -22,14 +22,6 @@ double seconds_since(clock_type::time_point& t0) {
   t0 = t1;
   return s;
 }
-/// Index of the first of n entries (device memory) that is NaN or Inf, or -1.
-index_t first_non_finite(const double* x, index_t n) {
-  const auto begin = thrust::device_pointer_cast(x);
-  const auto bad = thrust::find_if(begin, begin + n, [] RBFIB_HD (double v) { return !((v - v) == 0.0); });
-  return bad == begin + n ? -1 : index_t(bad - begin);
-}
-index_t first_non_finite(const dvec& x) { return first_non_finite(ptr(x), index_t(x.size())); }
-
 std::array<Box, 3> component_boxes(const MacOperators& ops) {
   return {ops.component_box(0), ops.component_box(1), ops.component_box(2)};
 }
@@ -61,8 +53,8 @@ ImmersedBoundary::ImmersedBoundary(const MacGrid& grid, FluidParameters fluid, N
 ImmersedBoundary::Carried ImmersedBoundary::carried() const {
   Carried c;
   c.fluid = state_;
-  for (const Entry& e : batches_) c.batches.push_back(e.batch.state().storage());
-  for (const PointEntry& q : points_) c.points.push_back(q.points.X);
+  for (const auto& b : batches_) c.batches.push_back(b->batch().state().storage());
+  for (const auto& q : points_) c.points.push_back(q->points().X);
   c.steps = steps_;
   c.dt = ns_.options().dt;
   c.level = level_;
@@ -81,15 +73,15 @@ void ImmersedBoundary::restore(const Carried& c) {
   require(c.fluid.p.size() == state_.p.size(), "checkpoint: pressure size", c.fluid.p.size(),
           "must equal this grid's " + to_text(state_.p.size()));
   for (std::size_t b = 0; b < batches_.size(); ++b)
-    require(c.batches[b].size() == batches_[b].batch.state().storage().size(), "checkpoint: batch " + to_text(b) + " size",
-            c.batches[b].size(), "must equal this setup's " + to_text(batches_[b].batch.state().storage().size()));
+    require(c.batches[b].size() == batch(index_t(b)).state().storage().size(), "checkpoint: batch " + to_text(b) + " size",
+            c.batches[b].size(), "must equal this setup's " + to_text(batch(index_t(b)).state().storage().size()));
   for (std::size_t p = 0; p < points_.size(); ++p)
-    require(c.points[p].size() == points_[p].points.X.size(), "checkpoint: point set " + to_text(p) + " size",
-            c.points[p].size(), "must equal this setup's " + to_text(points_[p].points.X.size()));
+    require(c.points[p].size() == points(index_t(p)).X.size(), "checkpoint: point set " + to_text(p) + " size",
+            c.points[p].size(), "must equal this setup's " + to_text(points(index_t(p)).X.size()));
   require(std::isfinite(c.dt) && c.dt > 0, "checkpoint: dt", c.dt, "must be positive");
   state_ = c.fluid;
-  for (std::size_t b = 0; b < batches_.size(); ++b) batches_[b].batch.state().storage() = c.batches[b];
-  for (std::size_t p = 0; p < points_.size(); ++p) points_[p].points.X = c.points[p];
+  for (std::size_t b = 0; b < batches_.size(); ++b) batch(index_t(b)).state().storage() = c.batches[b];
+  for (std::size_t p = 0; p < points_.size(); ++p) points_[p]->points().X = c.points[p];
   steps_ = c.steps;
   level_ = c.level;
   allowing_ = c.allowing;
@@ -130,46 +122,14 @@ IbStepReport ImmersedBoundary::step() {
 }
 
 index_t ImmersedBoundary::add(cells::Batch batch) {
-  batches_.push_back(Entry{std::move(batch), {}, {}, {}, {}, {}, {}});
+  batches_.push_back(std::make_unique<CellBatchSet>(std::move(batch)));
   return index_t(batches_.size()) - 1;
 }
 
 index_t ImmersedBoundary::add(TetheredPoints p) {
-  const std::string field = "tethered points '" + p.name + "'";
-  require(p.X.size() % 3 == 0 && !p.X.empty(), field + ": positions size", p.X.size(), "must be a positive multiple of 3");
-  require(p.anchors.size() == p.X.size(), field + ": anchors size", p.anchors.size(), "must equal the positions' size");
-  require(std::isfinite(p.k) && p.k >= 0, field + ": spring constant k (dyn/cm)", p.k, "must be finite and >= 0");
-  require(std::isfinite(p.eta) && p.eta >= 0, field + ": damping eta (dyn s/cm)", p.eta, "must be finite and >= 0");
-  require(first_non_finite(p.X) < 0 && first_non_finite(p.anchors) < 0, field + ": positions and anchors", "NaN or Inf",
-          "must be finite");
-  points_.push_back(PointEntry{std::move(p), {}, {}, {}, {}, {}});
+  // The seed's coupling holds the springs at X^n; the midpoint coupling at X^{n+1/2}.
+  points_.push_back(std::make_unique<TetheredPointSet>(std::move(p), options_.coupling == Coupling::midpoint));
   return index_t(points_.size()) - 1;
-}
-
-void ImmersedBoundary::sort_start(Entry& e) {
-  const index_t nd = e.batch.type().n_data(), N = e.batch.size(), n = N * nd;
-  const double* X = ptr(e.batch.state().storage());
-  const index_t k = first_non_finite(X, 3 * n);
-  if (k >= 0)
-    throw NumericalError(Cause::non_finite, "cell type '" + e.batch.type().name() + "', cell " + to_text((k % n) / nd) +
-                         ": non-finite position at data site " + to_text(k % nd) + " (coordinate " + "xyz"[k / n] + ")");
-  ib_.sort(X, n, e.start);
-}
-
-void ImmersedBoundary::interpolate(const ib::SortedPoints& s, const VectorField& u, dvec& U, const std::string& who) {
-  U.resize(static_cast<std::size_t>(3 * s.size()));
-  ib_.interpolate(s, u, ptr(U));
-  if (!blas::all_finite(U)) throw NumericalError(Cause::non_finite, who + ": non-finite interpolated velocity");
-}
-
-void ImmersedBoundary::advance(Entry& e, double c) {
-  const auto n = static_cast<std::ptrdiff_t>(e.U.size());
-  e.X.resize(e.U.size());
-  thrust::copy(e.saved.begin(), e.saved.begin() + n, e.X.begin());  // X^n
-  blas::axpy(c, e.U, e.X);
-  auto state = e.batch.state().storage().begin();
-  thrust::copy(e.X.begin(), e.X.end(), state);
-  thrust::copy(e.U.begin(), e.U.end(), state + n);  // the velocity block
 }
 
 IbStepReport ImmersedBoundary::attempt() {
@@ -178,59 +138,25 @@ IbStepReport ImmersedBoundary::attempt() {
   r.dt = dt;
   const double t = state_.t;
   const bool midpoint = options_.coupling == Coupling::midpoint;
-  // Keep X^n and U at the start: the whole Lagrangian state is restored on failure.
-  for (Entry& e : batches_) e.saved = e.batch.state().storage();
-  for (PointEntry& q : points_) q.X0 = q.points.X;
+  // Keep X^n (and U): the whole Lagrangian state is restored on failure.
+  for_each_set([](LagrangianSet& s) { s.save(); });
   bool fluid_stepped = false;
   try {
     auto t0 = clock_type::now();
     // (a) U^n = I u^n at X^n; (b) X* = X^n + dt U^n (midpoint: X^{n+1/2} = X^n + dt/2 U^n).
     const double predict = midpoint ? 0.5 * dt : dt;
-    for (Entry& e : batches_) {
-      sort_start(e);
-      interpolate(e.start, state_.u, e.U, "cell type '" + e.batch.type().name() + "'");
-      advance(e, predict);
-    }
-    for (PointEntry& q : points_) {
-      TetheredPoints& P = q.points;
-      ib_.sort(ptr(q.X0), index_t(q.X0.size()) / 3, q.start);
-      interpolate(q.start, state_.u, q.U, "tethered points '" + P.name + "'");
-      // The seed's coupling evaluates eq. 2.10 at X^n (not predicted; see the header); the
-      // midpoint coupling at X^{n+1/2}. F = -k (X - X') - eta U^n, per point.
-      if (midpoint) blas::axpy(predict, q.U, P.X);
-      q.F = P.X;
-      blas::axpy(-1.0, P.anchors, q.F);
-      blas::scale(-P.k, q.F);
-      blas::axpy(-P.eta, q.U, q.F);
-    }
+    for_each_set([&](LagrangianSet& s) {
+      s.interpolate_start(ib_, state_.u);
+      s.predict(predict);
+    });
     r.seconds_interpolation += seconds_since(t0);
     // (c) F^{n+1} at X* (sample sites), with U^n for dissipation.
-    for (Entry& e : batches_) {
-      cells::compute_forces(e.batch, e.forces);
-      r.elastic_energy += e.forces.energy;
-    }
+    for_each_set([&](LagrangianSet& s) { r.elastic_energy += s.compute_force(); });
     r.seconds_forces = seconds_since(t0);
-    // (d) f^{n+1} = S F^{n+1} from the sample sites of X* (and the points), summed, plus the body force.
+    // (d) f^{n+1} = S F^{n+1} from where the forces act, summed over the sets, plus the body force.
     for (int a = 0; a < 3; ++a)
       f_[a].assign(static_cast<std::size_t>(ns_.operators().component_box(a).size()), options_.body_force[a]);
-    // The binned algorithm adds every set into f at once; the others spread into a scratch field.
-    const bool binned = options_.spreading == ib::Spreading::binned;
-    auto spread_add = [&](const dvec& X, const dvec& F, ib::SortedPoints& sorted) {
-      if (binned) {
-        ib_.sort(ptr(X), index_t(X.size()) / 3, sorted);
-        ib_.spread(sorted, ptr(F), f_, true);
-        return;
-      }
-      ib_.spread(X, F, scratch_, options_.spreading);
-      for (int a = 0; a < 3; ++a) blas::axpy(1.0, scratch_[a], f_[a]);
-    };
-    for (Entry& e : batches_) spread_add(e.forces.positions.storage(), e.forces.force.storage(), e.sample);
-    for (PointEntry& q : points_) {
-      if (!midpoint && binned)
-        ib_.spread(q.start, ptr(q.F), f_, true);  // from X^n, sorted once for (a), (d) and (f)
-      else
-        spread_add(q.points.X, q.F, q.spread);
-    }
+    for_each_set([&](LagrangianSet& s) { s.spread(ib_, options_.spreading, f_, scratch_); });
     r.seconds_spreading = seconds_since(t0);
     // Eq. 5.4: dt <= (1/4) sqrt(h rho / ||f||_inf).
     for (int a = 0; a < 3; ++a) r.max_force_density = std::max(r.max_force_density, blas::norm_inf(f_[a]));
@@ -238,44 +164,35 @@ IbStepReport ImmersedBoundary::attempt() {
     const double h = std::min({g.h(0), g.h(1), g.h(2)});
     r.dt_bound = r.max_force_density > 0 ? 0.25 * std::sqrt(h * ns_.fluid().density / r.max_force_density)
                                          : std::numeric_limits<double>::infinity();
-    if (!std::isfinite(r.max_force_density))
-      throw NumericalError(Cause::non_finite, "non-finite spread force density");
+    if (!std::isfinite(r.max_force_density)) throw NumericalError(Cause::non_finite, "non-finite spread force density");
     if (options_.adaptive.enabled && dt > r.dt_bound) throw Refused{r.dt_bound};
     if (options_.stopping_condition && dt > r.dt_bound)
       throw NumericalError(Cause::stopping_condition, "stopping condition (eq. 5.4) violated: ||f||_inf = " + to_text(r.max_force_density) +
-                           " dyn/cm^3, dt = " + to_text(dt) + " s > (1/4) sqrt(h rho / ||f||_inf) = " + to_text(r.dt_bound) + " s");
+                                                          " dyn/cm^3, dt = " + to_text(dt) + " s > (1/4) sqrt(h rho / ||f||_inf) = " +
+                                                          to_text(r.dt_bound) + " s");
     // (e) the fluid step.
     backup_ = state_;
     fluid_stepped = true;
     r.fluid = ns_.step(state_, &f_);
     for (int a = 0; a < 3; ++a)
-      if (!blas::all_finite(state_.u[a])) throw NumericalError(Cause::non_finite, "non-finite fluid velocity (component " + to_text(a) + ")");
+      if (!blas::all_finite(state_.u[a]))
+        throw NumericalError(Cause::non_finite, "non-finite fluid velocity (component " + to_text(a) + ")");
     const double cell_volume = g.h(0) * g.h(1) * g.h(2);
     for (int a = 0; a < 3; ++a) {
       r.max_velocity = std::max(r.max_velocity, blas::norm_inf(state_.u[a]));
       r.kinetic_energy += 0.5 * ns_.fluid().density * blas::dot(state_.u[a], state_.u[a]) * cell_volume;
     }
     r.seconds_fluid = seconds_since(t0);  // with its checks and diagnostics
-    // (f) U^{n+1} = I u^{n+1} at X^n (midpoint: U^{n+1/2} = I u^{n+1/2} at X^{n+1/2});
+    // (f) U^{n+1} = I u^{n+1} at X^n (midpoint: U^{n+1/2} = I u^{n+1/2} at X^{n+1/2}, sorted once more);
     // (g) X^{n+1} = X^n + dt U.
-    // Seed: the sort of X^n from (a) is reused; midpoint: X^{n+1/2} is sorted once more.
     const VectorField& u_final = midpoint ? ns_.midpoint_velocity() : state_.u;
-    for (Entry& e : batches_) {
-      if (midpoint) ib_.sort(ptr(e.X), index_t(e.X.size()) / 3, e.start);
-      interpolate(e.start, u_final, e.U, "cell type '" + e.batch.type().name() + "'");
-      advance(e, dt);
-    }
-    for (PointEntry& q : points_) {
-      TetheredPoints& P = q.points;
-      if (midpoint) ib_.sort(ptr(P.X), index_t(P.X.size()) / 3, q.start);
-      interpolate(q.start, u_final, q.U, "tethered points '" + P.name + "'");
-      P.X = q.X0;
-      blas::axpy(dt, q.U, P.X);
-    }
+    for_each_set([&](LagrangianSet& s) {
+      s.interpolate_end(ib_, u_final, midpoint);
+      s.update(dt);
+    });
     r.seconds_interpolation += seconds_since(t0);
   } catch (...) {
-    for (Entry& e : batches_) e.batch.state().storage() = e.saved;
-    for (PointEntry& q : points_) q.points.X = q.X0;
+    for_each_set([](LagrangianSet& s) { s.restore(); });
     if (fluid_stepped) state_ = backup_;
     try {
       throw;
@@ -283,10 +200,10 @@ IbStepReport ImmersedBoundary::attempt() {
       throw;
     } catch (const NumericalError& ex) {
       throw NumericalError(ex.cause(), "immersed-boundary step " + to_text(steps_) + " at t = " + to_text(t) + " s: " + ex.what() +
-                           " (the state before this step is kept)");
+                                           " (the state before this step is kept)");
     } catch (const std::exception& ex) {
       throw NumericalError(Cause::solver, "immersed-boundary step " + to_text(steps_) + " at t = " + to_text(t) + " s: " + ex.what() +
-                           " (the state before this step is kept)");
+                                              " (the state before this step is kept)");
     }
   }
   ++steps_;

@@ -39,6 +39,7 @@
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/fluid/navier_stokes.hpp"
 #include "rbfib/ib/interaction.hpp"
+#include "rbfib/sim/lagrangian.hpp"
 
 #include <memory>
 #include <string>
@@ -73,19 +74,6 @@ struct IbOptions {
   AdaptiveStep adaptive;
 };
 
-/// Bare Lagrangian points held by damped springs to anchors (dissertation eq. 2.10, the
-/// endothelium of Sec. 5.2): the force on point k is F_k = -k_s (X_k - X'_k) - eta (U_k - U'_k),
-/// U' = 0, in dyn per point (k_s in dyn/cm, eta in dyn s/cm: the seed's k = 2.5 dyn/cm and
-/// eta = 2.5e-7 dyn s/cm are per point, as its units say). Forces are spread from the points and
-/// velocities interpolated at them; no surface is reconstructed.
-struct TetheredPoints {
-  std::string name;
-  dvec X;        ///< positions, 3n, X[d n + k] (cm)
-  dvec anchors;  ///< X', 3n (cm)
-  double k = 0;    ///< spring constant (dyn/cm)
-  double eta = 0;  ///< damping (dyn s/cm)
-};
-
 /// What one step did (seconds per component and the eq. 5.4 numbers).
 struct IbStepReport {
   double dt = 0;                 ///< the step taken (s)
@@ -109,10 +97,10 @@ class ImmersedBoundary {
   /// Adds a set of tethered points; returns its index. Throws InputError naming the field for
   /// mismatched sizes, non-finite values or negative constants.
   index_t add(TetheredPoints points);
-  const TetheredPoints& points(index_t p) const { return points_.at(p).points; }
+  const TetheredPoints& points(index_t p) const { return points_.at(p)->points(); }
   index_t point_sets() const { return index_t(points_.size()); }
-  cells::Batch& batch(index_t b) { return batches_.at(b).batch; }
-  const cells::Batch& batch(index_t b) const { return batches_.at(b).batch; }
+  cells::Batch& batch(index_t b) { return batches_.at(b)->batch(); }
+  const cells::Batch& batch(index_t b) const { return batches_.at(b)->batch(); }
   index_t batches() const { return index_t(batches_.size()); }
 
   FluidState& fluid_state() { return state_; }
@@ -148,33 +136,20 @@ class ImmersedBoundary {
   /// Per-cell diagnostics of batch b from the last step's force call, at the positions the forces
   /// were computed at (X* of (b), or X^{n+1/2}): energy, dissipation, area, volume, centroid.
   /// Empty before the first step.
-  const cells::CellDiagnostics& diagnostics(index_t b) const { return batches_.at(b).forces.cells; }
+  const cells::CellDiagnostics& diagnostics(index_t b) const { return batches_.at(b)->forces().cells; }
 
   /// The Eulerian force density of the last step (dyn/cm^3), per component.
   const VectorField& force_density() const { return f_; }
 
  private:
-  struct Entry {
-    cells::Batch batch;
-    cells::CellForces forces;
-    dvec saved;               // the whole state (X^n and U) at the start of a step, restored on failure
-    ib::SortedPoints start;   // X^n sorted once by grid cell: (a) and (f) interpolate there
-    ib::SortedPoints sample;  // the sample sites the forces are spread from
-    dvec X, U;                // the positions being used, the interpolated velocities
-  };
-  struct PointEntry {
-    TetheredPoints points;
-    ib::SortedPoints start, spread;
-    dvec X0, U, F;  // X^n (also what a failure restores), velocities, spring forces
-  };
-  /// Sorts the batch's X^n (read in place from its state) after checking it is finite.
-  void sort_start(Entry& e);
-  /// U = I u at sorted points; throws NumericalError naming `who` when U is not finite.
-  void interpolate(const ib::SortedPoints& s, const VectorField& u, dvec& U, const std::string& who);
-  /// X = X^n + c U, with X^n from the saved state; written into the batch's state with U.
-  static void advance(Entry& e, double c);
-  /// One attempt at the step with the current dt; throws Refused (state restored) when the
-  /// adaptive step is on and eq. 5.4 refuses it.
+  /// Calls fn on every Lagrangian set: the cell batches, then the tethered point sets.
+  template <class F>
+  void for_each_set(F&& fn) {
+    for (auto& b : batches_) fn(static_cast<LagrangianSet&>(*b));
+    for (auto& p : points_) fn(static_cast<LagrangianSet&>(*p));
+  }
+  /// One attempt at the step with the current dt: the coupling; throws Refused (state restored)
+  /// when the adaptive step is on and eq. 5.4 refuses it.
   IbStepReport attempt();
   struct Refused {
     double bound;
@@ -185,8 +160,8 @@ class ImmersedBoundary {
   ib::Interaction ib_;
   IbOptions options_;
   FluidState state_, backup_;
-  std::vector<Entry> batches_;
-  std::vector<PointEntry> points_;
+  std::vector<std::unique_ptr<CellBatchSet>> batches_;
+  std::vector<std::unique_ptr<TetheredPointSet>> points_;
   VectorField f_, scratch_;  // the force density; a scratch field for the non-binned spreadings
   long steps_ = 0;
   int level_ = 0, allowing_ = 0;  // adaptive step: current level, consecutive steps allowing a doubling
