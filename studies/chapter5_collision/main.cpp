@@ -46,13 +46,14 @@
 // gives 1/2) at t = 0, mid-run (full: the seed's figure time) and the end; the time and step at
 // which eq. 5.4 (or another numerical failure) stops a run; wall time per step.
 //
-// Each run (id <setup>_<orientation>, e.g. h0.2_c-d, recorded in results["runs"]) keeps
-// DIR/<setup>/<orientation>/ with its scene (scene.yaml, built by scene::parse_scene +
-// scene::build; `build/bin/rbfib run` reruns it) and its series (series.csv, outlines.csv,
-// shapes.csv). Full scale is resumable: a checkpoint (checkpoint.h5, io/checkpoint.hpp) every
-// 1000 steps at h = 0.5 um and 200 at h = 0.2 um and at the end of a sitting (--sitting SECONDS
-// of wall time, st::Sitting), and status.txt once the run has ended; running the same command
-// again continues each unfinished run from its checkpoint. Quick scale always starts afresh.
+// Each run (id <setup>_<orientation>, e.g. h0.2_c-d, recorded in results["runs"]) goes through the
+// library's run loop (run/run.hpp) and keeps DIR/<setup>/<orientation>/ with its scene (scene.yaml;
+// `build/bin/rbfib run` reruns it) and its series as CSV (series.csv, outlines.csv, shapes.csv,
+// written at the end of each sitting). Full scale is resumable: the checkpoint (checkpoint.h5,
+// with the series inside and whether the run has ended) is written every 1000 steps at h = 0.5 um
+// and 200 at h = 0.2 um and at the end of a sitting (--sitting SECONDS of wall time); running the
+// same command again continues each unfinished run from it. Quick scale starts afresh (with
+// --resumable it keeps checkpoints too).
 //
 // Run:   build/studies/study_chapter5_collision --scale quick --out runs/chapter5_collision/quick
 //        build/studies/study_chapter5_collision --scale full --sitting 3600
@@ -63,19 +64,18 @@
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/io/checkpoint.hpp"
+#include "rbfib/run/run.hpp"
 #include "rbfib/scene/scene.hpp"
 #include "rbfib/sim/ib_step.hpp"
 #include "rbfib/surface/contact.hpp"
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -259,8 +259,6 @@ struct Sample {
   std::array<double, 2> volume{0, 0};  // cm^3
   double max_velocity = 0;   // cm/s, after the last step
   double eq54_ratio = 0;     // dt / ((1/4) sqrt(h rho / ||f||_inf)) of the last step: 1 stops the run
-  double seconds = 0;        // wall time of the steps since the previous sample
-  long steps = 0;            // their number
 };
 
 /// Sample-site positions of the batch's cells (n_s x 6, column d N + c), volumes and centroids.
@@ -388,94 +386,89 @@ struct RunResult {
   bool ended() const { return status != "running"; }
 };
 
-const char* kSeriesHeader = "step,t_s,min_gap_cm,separation_cm,volume0_cm3,volume1_cm3,max_velocity_cm_s,eq54_ratio,seconds,steps";
-const char* kShapesHeader = "step,t_s,moment,cell,depth_cm,width_y_cm,width_across_cm";
+// The run's series, kept in its checkpoint (run/run.hpp) and written out as CSV at the end of each
+// sitting: "samples" [step, t, min_gap, separation, volume0, volume1, max_velocity, eq54_ratio],
+// "outlines" [t, kind, cell, s, y] (kind 0 section, 1 silhouette), "shapes" [t, moment, cell,
+// depth, width_y, width_across] (moment 0 start, 1 mid, 2 figure, 3 end), "reference" [v0, A0].
+const char* kKinds[2] = {"section", "silhouette"};
+const char* kMoments[4] = {"start", "mid", "figure", "end"};
 
-void append(const std::string& path, const Sample& m) {
-  std::ofstream f(path, std::ios::app);
+int code(const std::string& name, const char* const* names, int n) {
+  for (int k = 0; k < n; ++k)
+    if (name == names[k]) return k;
+  throw std::logic_error("unknown name " + name);
+}
+
+std::vector<double> sample_row(const Sample& m) {
+  return {double(m.step), m.t, m.min_gap, m.separation, m.volume[0], m.volume[1], m.max_velocity, m.eq54_ratio};
+}
+
+Sample sample_of(const std::vector<double>& r) {
+  Sample m;
+  m.step = std::lround(r.at(0));
+  m.t = r[1], m.min_gap = r[2], m.separation = r[3], m.volume = {r[4], r[5]}, m.max_velocity = r[6], m.eq54_ratio = r[7];
+  return m;
+}
+
+/// The outlines and shapes of the state `at` at a moment, added to the series.
+void record_state(run::SeriesSet& series, double t, const Sites& at, const std::string& moment, double h) {
+  for (const OutlinePoint& q : outline(at, h)) series["outlines"].rows.push_back({t, double(code(q.kind, kKinds, 2)), double(q.cell), q.s, q.y});
+  for (const Shape& c : shapes(at))
+    series["shapes"].rows.push_back({t, double(code(moment, kMoments, 4)), double(c.cell), c.depth, c.width_y, c.width_across});
+}
+
+/// The run's result from its series and where it stands.
+RunResult result_of(const run::SeriesSet& series, const run::Progress& p) {
+  RunResult r;
+  r.status = p.status == run::RunStatus::finished ? "done"
+             : p.status == run::RunStatus::stopped ? (*p.stop_cause == Cause::stopping_condition ? "eq. 5.4" : "stopped")
+                                                   : "running";
+  r.message = p.stop_message;
+  r.steps = p.steps;
+  r.t = p.t;
+  r.seconds = p.wall_seconds;
+  r.seconds_this_sitting = p.sitting_seconds;
+  r.steps_this_sitting = p.sitting_steps;
+  auto rows = [&](const char* name) {
+    const auto it = series.find(name);
+    return it == series.end() ? std::vector<std::vector<double>>{} : it->second.rows;
+  };
+  for (const auto& row : rows("reference")) r.v0 = row.at(0), r.area_quadrature = row.at(1);
+  for (const auto& row : rows("samples")) r.series.push_back(sample_of(row));
+  for (const auto& row : rows("outlines")) {
+    if (r.outlines.empty() || r.outlines.back().first != row.at(0)) r.outlines.push_back({row[0], {}});
+    r.outlines.back().second.push_back({kKinds[int(row[1])], int(row[2]), row[3], row[4]});
+  }
+  for (const auto& row : rows("shapes")) {
+    if (r.shapes.empty() || r.shapes.back().t != row.at(0)) r.shapes.push_back({row[0], kMoments[int(row[1])], {}});
+    r.shapes.back().cells.push_back({int(row[2]), row[3], row[4], row[5]});
+  }
+  return r;
+}
+
+/// The series as CSV files beside the run (a view: the checkpoint holds them).
+void write_csv(const std::string& dir, const RunResult& r) {
+  std::ofstream f(dir + "/series.csv");
   f.precision(17);
-  f << m.step << "," << m.t << "," << m.min_gap << "," << m.separation << "," << m.volume[0] << "," << m.volume[1] << ","
-    << m.max_velocity << "," << m.eq54_ratio << "," << m.seconds << "," << m.steps << "\n";
+  f << "step,t_s,min_gap_cm,separation_cm,volume0_cm3,volume1_cm3,max_velocity_cm_s,eq54_ratio\n";
+  for (const Sample& m : r.series)
+    f << m.step << "," << m.t << "," << m.min_gap << "," << m.separation << "," << m.volume[0] << "," << m.volume[1] << ","
+      << m.max_velocity << "," << m.eq54_ratio << "\n";
+  std::ofstream o(dir + "/outlines.csv");
+  o.precision(10);
+  o << "t_s,kind,cell,s_um,y_um\n";
+  for (const auto& [t, rows] : r.outlines)
+    for (const OutlinePoint& q : rows) o << t << "," << q.kind << "," << q.cell << "," << q.s << "," << q.y << "\n";
+  std::ofstream h(dir + "/shapes.csv");
+  h.precision(17);
+  h << "t_s,moment,cell,depth_cm,width_y_cm,width_across_cm\n";
+  for (const auto& sh : r.shapes)
+    for (const Shape& c : sh.cells) h << sh.t << "," << sh.moment << "," << c.cell << "," << c.depth << "," << c.width_y << "," << c.width_across << "\n";
 }
 
-void append(const std::string& path, long step, double t, const std::vector<OutlinePoint>& rows) {
-  std::ofstream f(path, std::ios::app);
-  f.precision(10);
-  for (const auto& r : rows) f << step << "," << t << "," << r.kind << "," << r.cell << "," << r.s << "," << r.y << "\n";
-}
-
-void append(const std::string& path, long step, double t, const std::string& moment, const std::vector<Shape>& cells) {
-  std::ofstream f(path, std::ios::app);
-  f.precision(17);
-  for (const Shape& c : cells)
-    f << step << "," << t << "," << moment << "," << c.cell << "," << c.depth << "," << c.width_y << "," << c.width_across << "\n";
-}
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> v;
-  std::stringstream ss(line);
-  std::string x;
-  while (std::getline(ss, x, ',')) v.push_back(x);
-  return v;
-}
-
-/// Reads the series, outlines and shapes back, keeping the rows of steps <= last (a resumed run
-/// would otherwise repeat the rows written after its checkpoint), and rewrites the files with them.
-void read_back(const std::string& dir, long last, RunResult& r) {
-  r.series.clear();
-  r.outlines.clear();
-  r.shapes.clear();
-  std::ifstream fs(dir + "/series.csv");
-  std::string line, kept = std::string(kSeriesHeader) + "\n";
-  std::getline(fs, line);
-  while (std::getline(fs, line)) {
-    const auto v = split(line);
-    if (v.size() != 10 || std::atol(v[0].c_str()) > last) continue;
-    Sample m;
-    m.step = std::atol(v[0].c_str());
-    m.t = std::atof(v[1].c_str());
-    m.min_gap = std::atof(v[2].c_str());
-    m.separation = std::atof(v[3].c_str());
-    m.volume = {std::atof(v[4].c_str()), std::atof(v[5].c_str())};
-    m.max_velocity = std::atof(v[6].c_str());
-    m.eq54_ratio = std::atof(v[7].c_str());
-    m.seconds = std::atof(v[8].c_str());
-    m.steps = std::atol(v[9].c_str());
-    r.series.push_back(m);
-    kept += line + "\n";
-  }
-  fs.close();
-  std::ofstream(dir + "/series.csv") << kept;
-  std::ifstream fo(dir + "/outlines.csv");
-  kept.clear();
-  while (std::getline(fo, line)) {
-    const auto v = split(line);
-    if (v.size() != 6 || std::atol(v[0].c_str()) > last) continue;
-    const double t = std::atof(v[1].c_str());
-    if (r.outlines.empty() || r.outlines.back().first != t) r.outlines.push_back({t, {}});
-    r.outlines.back().second.push_back({v[2], std::atoi(v[3].c_str()), std::atof(v[4].c_str()), std::atof(v[5].c_str())});
-    kept += line + "\n";
-  }
-  fo.close();
-  std::ofstream(dir + "/outlines.csv") << kept;
-  std::ifstream fh(dir + "/shapes.csv");
-  kept = std::string(kShapesHeader) + "\n";
-  std::getline(fh, line);
-  while (std::getline(fh, line)) {
-    const auto v = split(line);
-    if (v.size() != 7 || std::atol(v[0].c_str()) > last) continue;
-    const double t = std::atof(v[1].c_str());
-    if (r.shapes.empty() || r.shapes.back().t != t) r.shapes.push_back({t, v[2], {}});
-    r.shapes.back().cells.push_back({std::atoi(v[3].c_str()), std::atof(v[4].c_str()), std::atof(v[5].c_str()), std::atof(v[6].c_str())});
-    kept += line + "\n";
-  }
-  fh.close();
-  std::ofstream(dir + "/shapes.csv") << kept;
-}
-
-/// One orientation's run at one setup. A resumable run (full scale) steps while the sitting has
-/// wall time left, then saves its checkpoint and returns with status "running".
-RunResult run(const Orientation& o, const Setup& s, double figure_time, const std::string& figure_moment, const st::Options& opt,
+/// One orientation's run at one setup, through the run loop. A resumable run (full scale) keeps
+/// its checkpoint and steps while the sitting has wall time left.
+RunResult run_orientation(const Orientation& o, const Setup& s, double figure_time, const std::string& figure_moment, const st::Options& opt,
               const st::Sitting& sitting) {
   const std::string dir = opt.out_dir + "/" + s.label + "/" + o.id;
   const bool resumable = s.checkpoint_every > 0;
@@ -483,142 +476,93 @@ RunResult run(const Orientation& o, const Setup& s, double figure_time, const st
   std::filesystem::create_directories(dir);
   const Placed p = place(o, s);
   const double A0 = reference_area();
-  const std::string text = scene_text(o, s, p, kFict * A0);
-  const std::string checkpoint = dir + "/checkpoint.h5", status = dir + "/status.txt", volume = dir + "/reference_volume.txt";
-  RunResult r;
-  if (resumable && std::filesystem::exists(dir + "/scene.yaml")) {
-    std::ifstream f(dir + "/scene.yaml");
-    const std::string earlier((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    if (earlier != text) throw InputError(dir + "/scene.yaml", "its scene", "differs from this driver's scene for " + s.label + " " + o.id + ": remove " + dir + " to start afresh");
-  }
-
-  // An ended run of an earlier sitting: its files are the result.
-  if (resumable && std::filesystem::exists(status)) {
-    std::ifstream f(status);
-    std::getline(f, r.status);
-    f >> r.steps >> r.t >> r.seconds >> r.v0;
-    f.ignore();
-    std::getline(f, r.message);
-    read_back(dir, r.steps, r);
-    st::log(opt, s.label + " " + o.id + ": ended in an earlier sitting (" + r.status + " at t = " + fmt(r.t / units::us) + " us)");
-    return r;
-  }
-  // The sitting's wall time is spent: how far earlier sittings took the run, without building it.
-  if (resumable && sitting.remaining() <= 0) {
-    if (std::filesystem::exists(checkpoint)) {
-      r.steps = io::read_checkpoint(checkpoint).state.steps;
-      read_back(dir, r.steps, r);
-      for (const Sample& m : r.series) r.seconds += m.seconds;
-      r.t = r.series.empty() ? 0 : r.series.back().t;
-      std::ifstream(volume) >> r.v0;
-    }
-    st::log(opt, s.label + " " + o.id + ": not stepped in this sitting (its wall time is spent), at step " + to_text(r.steps));
-    return r;
-  }
-
-  sim::ImmersedBoundary ib = scene::build(scene::parse_scene(text, dir + "/scene.yaml"));
-  r.area_quadrature = ib.batch(0).type().reference_area();
-  r.v0 = ib.batch(0).type().reference_volume();
-  auto record_state = [&](const Sites& at, const std::string& moment) {
-    append(dir + "/outlines.csv", ib.step_count(), ib.time(), outline(at, s.h));
-    r.outlines.push_back({ib.time(), outline(at, s.h)});
-    append(dir + "/shapes.csv", ib.step_count(), ib.time(), moment, shapes(at));
-    r.shapes.push_back({ib.time(), moment, shapes(at)});
-  };
+  const std::string text = scene_text(o, s, p, kFict * A0), checkpoint = dir + "/checkpoint.h5";
+  std::ofstream(dir + "/scene.yaml") << text;
   if (resumable && std::filesystem::exists(checkpoint)) {
     const io::Checkpoint k = io::read_checkpoint(checkpoint);
-    if (k.scene_yaml != text) throw InputError(checkpoint, "its scene", "differs from this driver's scene for " + o.id + ": remove " + dir + " to start afresh");
-    ib.restore(k.state);
-    read_back(dir, ib.step_count(), r);
-    for (const Sample& m : r.series) r.seconds += m.seconds;
-    st::log(opt, s.label + " " + o.id + ": continuing from " + checkpoint + " at step " + to_text(ib.step_count()) + ", t = " +
-                     fmt(ib.time() / units::us) + " us");
-  } else {
-    std::ofstream(dir + "/scene.yaml") << text;
-    std::ofstream(dir + "/series.csv") << kSeriesHeader << "\n";
-    std::ofstream(dir + "/outlines.csv");
-    std::ofstream(dir + "/shapes.csv") << kShapesHeader << "\n";
-    std::ofstream(volume) << to_text(r.v0) << "\n";
-    const Sites s0 = sites(ib);
-    const Sample m0 = measure(ib, s0);
-    append(dir + "/series.csv", m0);
-    r.series.push_back(m0);
-    record_state(s0, "start");
-    st::log(opt, s.label + " " + o.id + " (" + o.what + "): hull gap " + fmt(p.hull_gap / units::um) + " um = " + fmt(p.hull_gap / s.h) +
-                     " h, nearest sample sites " + fmt(m0.min_gap / units::um) + " um; F_fict A0 = " + fmt(kFict * A0) +
-                     " dyn per cell (A0 = " + fmt(A0 / (units::um * units::um)) + " um^2, quadrature " +
-                     fmt(r.area_quadrature / (units::um * units::um)) + ")");
+    if (k.scene_yaml != text)
+      throw InputError(checkpoint, "its scene", "differs from this driver's scene for " + s.label + " " + o.id + ": remove " + dir + " to start afresh");
+    // Ended in an earlier sitting, or this sitting's time is spent: the checkpoint is the result,
+    // read without building the run.
+    if (k.record.status != run::RunStatus::running || sitting.remaining() <= 0) {
+      run::Progress q;
+      q.status = k.record.status, q.t = k.state.fluid.t, q.t_end = s.t_end, q.steps = k.state.steps;
+      q.wall_seconds = k.record.wall_seconds, q.steps_timed = k.record.steps_timed, q.stop_message = k.record.stop_message;
+      if (q.status == run::RunStatus::stopped) q.stop_cause = k.record.stop_cause;
+      const RunResult r = result_of(k.record.series, q);
+      st::log(opt, s.label + " " + o.id + ": " + (q.ended() ? "ended in an earlier sitting (" + r.status + ")" : std::string("not stepped in this sitting (its time is spent)")) +
+                       " at step " + to_text(r.steps) + ", t = " + fmt(r.t / units::us) + " us");
+      return r;
+    }
   }
 
-  // The state at the figure's time (quick: mid-run); none when that time is the end (the end has its own).
-  bool mid_done = figure_time >= s.t_end * (1 - 1e-12) || ib.time() >= figure_time * (1 - 1e-12);
-  Sample pending;
-  auto t_last = std::chrono::steady_clock::now();
-  auto flush_sample = [&](const sim::IbStepReport& rep, const Sites& at) {
-    Sample m = measure(ib, at);
-    m.max_velocity = rep.max_velocity;
-    m.eq54_ratio = rep.dt_bound > 0 && std::isfinite(rep.dt_bound) ? rep.dt / rep.dt_bound : 0;
-    m.seconds = pending.seconds;
-    m.steps = pending.steps;
-    pending = Sample{};
-    append(dir + "/series.csv", m);
-    r.series.push_back(m);
-  };
-  sim::IbStepReport rep;
-  while (true) {
-    if (ib.time() >= s.t_end * (1 - 1e-12)) {
-      r.status = "done";
-      break;
-    }
-    if (resumable && sitting.remaining() <= 0) break;
-    try {
-      rep = ib.step();
-    } catch (const NumericalError& e) {
-      r.message = e.what();
-      r.status = e.cause() == Cause::stopping_condition ? "eq. 5.4" : "stopped";
-      st::log(opt, s.label + " " + o.id + ": stopped at step " + to_text(ib.step_count() + 1) + ", t = " + fmt(ib.time() / units::us) + " us: " + r.message);
-      break;
-    }
-    const auto now = std::chrono::steady_clock::now();
-    const double dt_wall = std::chrono::duration<double>(now - t_last).count();
-    t_last = now;
-    pending.seconds += dt_wall;
-    pending.steps += 1;
-    r.seconds += dt_wall;
-    r.seconds_this_sitting += dt_wall;
-    r.steps_this_sitting += 1;
-    const long n = ib.step_count();
-    const bool mid = !mid_done && ib.time() >= figure_time * (1 - 1e-12);
-    if (n % s.measure_every == 0 || mid) {
-      const Sites at = sites(ib);
-      flush_sample(rep, at);
-      if (mid) {
-        mid_done = true;
-        record_state(at, figure_moment);
-      }
-      t_last = std::chrono::steady_clock::now();  // the measurement is not the step's time
-    }
-    if (resumable && n % s.checkpoint_every == 0) {
-      io::write_checkpoint(checkpoint, text, ib);
-      t_last = std::chrono::steady_clock::now();
-    }
+  if (resumable && sitting.remaining() <= 0) {  // not begun: no sitting has reached it yet
+    st::log(opt, s.label + " " + o.id + ": not begun (this sitting's time is spent)");
+    return RunResult{};
   }
-  // The final state (the last good one when stopped): a sample, the outline and the shapes.
-  const Sites at = sites(ib);
-  if (r.series.empty() || r.series.back().step != ib.step_count()) flush_sample(rep, at);
-  r.steps = ib.step_count();
-  r.t = ib.time();
-  if (r.ended()) record_state(at, "end");
+  run::Options ro;
+  ro.t_end = s.t_end;
   if (resumable) {
-    io::write_checkpoint(checkpoint, text, ib);
-    if (r.ended()) {
-      std::ofstream f(status);
-      f.precision(17);
-      f << r.status << "\n" << r.steps << " " << r.t << " " << r.seconds << " " << r.v0 << "\n" << r.message << "\n";
-    }
+    ro.checkpoint = checkpoint;
+    ro.sitting = sitting.remaining();
   }
-  st::log(opt, s.label + " " + o.id + ": " + r.status + " at step " + to_text(r.steps) + ", t = " + fmt(r.t / units::us) + " us; " +
-                   to_text(r.steps_this_sitting) + " steps in this sitting, " + fmt(r.seconds_this_sitting) + " s");
+  ro.checkpoint_every = {s.checkpoint_every, 0, 0};
+  ro.sample_every = {s.measure_every, 0, 0};
+  ro.progress_every = {0, 0, 300};
+  sim::IbStepReport last;  // the last step's report (max |u|, eq. 5.4's ratio)
+  auto sample = [&](const sim::ImmersedBoundary& ib, const Sites& at) {
+    Sample m = measure(ib, at);
+    m.max_velocity = last.max_velocity;
+    m.eq54_ratio = last.dt_bound > 0 && std::isfinite(last.dt_bound) ? last.dt / last.dt_bound : 0;
+    return sample_row(m);
+  };
+  run::Hooks hk;
+  hk.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport* rep, run::SeriesSet& series) {
+    if (rep) last = *rep;
+    const Sites at = sites(ib);
+    series["samples"].rows.push_back(sample(ib, at));
+    if (!rep) {  // t = 0: the reference, the starting outlines and shapes
+      series["reference"].rows.push_back({ib.batch(0).type().reference_volume(), ib.batch(0).type().reference_area()});
+      record_state(series, ib.time(), at, "start", s.h);
+    }
+  };
+  // The state at the figure's time (quick: mid-run); none when that time is the end (the end has its own).
+  hk.after_step = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport* rep, run::SeriesSet& series) {
+    if (!rep) return;
+    last = *rep;
+    const bool taken = std::any_of(series["shapes"].rows.begin(), series["shapes"].rows.end(),
+                                   [&](const std::vector<double>& r) { return r.at(1) == code(figure_moment, kMoments, 4); });
+    if (taken || figure_time >= s.t_end * (1 - 1e-12) || ib.time() < figure_time * (1 - 1e-12)) return;
+    const Sites at = sites(ib);
+    std::vector<std::vector<double>>& samples = series["samples"].rows;
+    if (samples.empty() || std::lround(samples.back().at(0)) != ib.step_count()) samples.push_back(sample(ib, at));
+    record_state(series, ib.time(), at, figure_moment, s.h);
+  };
+  hk.progress = [&](const run::Progress& q) { st::log(opt, s.label + " " + o.id + ": " + q.describe()); };
+  run::Run runner(text, dir + "/scene.yaml", ro, hk);
+  if (runner.continued())
+    st::log(opt, s.label + " " + o.id + ": continuing from " + checkpoint + " at step " + to_text(runner.ib().step_count()) + ", t = " +
+                     fmt(runner.ib().time() / units::us) + " us");
+  else
+    st::log(opt, s.label + " " + o.id + " (" + o.what + "): hull gap " + fmt(p.hull_gap / units::um) + " um = " + fmt(p.hull_gap / s.h) +
+                     " h, nearest sample sites " + fmt(sample_of(runner.series("samples").rows.front()).min_gap / units::um) +
+                     " um; F_fict A0 = " + fmt(kFict * A0) + " dyn per cell (A0 = " + fmt(A0 / (units::um * units::um)) + " um^2, quadrature " +
+                     fmt(runner.ib().batch(0).type().reference_area() / (units::um * units::um)) + ")");
+  const run::Progress q = runner.evolve();
+  // The final state (the last good one when stopped): a sample, the outline and the shapes.
+  if (q.ended()) {
+    const sim::ImmersedBoundary& ib = runner.ib();
+    const Sites at = sites(ib);
+    std::vector<std::vector<double>>& samples = runner.series()["samples"].rows;
+    if (samples.empty() || std::lround(samples.back().at(0)) != ib.step_count()) samples.push_back(sample(ib, at));
+    record_state(runner.series(), ib.time(), at, "end", s.h);
+    runner.checkpoint();
+  }
+  RunResult r = result_of(runner.series(), q);
+  write_csv(dir, r);
+  st::log(opt, s.label + " " + o.id + ": " + r.status + (r.message.empty() ? "" : " (" + r.message + ")") + " at step " + to_text(r.steps) +
+                   ", t = " + fmt(r.t / units::us) + " us; " + to_text(r.steps_this_sitting) + " steps in this sitting, " +
+                   fmt(r.seconds_this_sitting) + " s");
   return r;
 }
 
@@ -635,7 +579,7 @@ int main(int argc, char** argv) {
     // stops it: h = 0.5 um at 1 cP (minutes to an hour per orientation here), the text's 0.1 cP
     // at h = 0.5 um (minutes), then the seed's h = 0.2 um (days here; resumable over sittings).
     const double t_end = full ? 10 * units::ms : 60 * units::us;
-    const Setup coarse{"h0.5", 0.5 * units::um, 100 * units::ns, t_end, 1 * units::cP, 400, 1600, 10, full ? 1000 : 0};
+    const Setup coarse{"h0.5", 0.5 * units::um, 100 * units::ns, t_end, 1 * units::cP, 400, 1600, 10, opt.keeps_runs() ? 1000 : 0};
     const Setup text_viscosity{"h0.5_mu0.1", 0.5 * units::um, 100 * units::ns, t_end, 0.1 * units::cP, 400, 1600, 10, 1000};
     const Setup seed{"h0.2", 0.2 * units::um, 50 * units::ns, t_end, 1 * units::cP, 2500, 10000, 20, 200};
     std::vector<Setup> setups = {coarse};
@@ -691,7 +635,7 @@ int main(int argc, char** argv) {
       for (const Orientation& o : orientations()) {
         const std::string id = s.label + "_" + o.id;
         const double t_figure = o.t_figure_ms * units::ms;
-        const RunResult r = full ? run(o, s, t_figure, "figure", opt, sitting) : run(o, s, s.t_end / 2, "mid", opt, sitting);
+        const RunResult r = full ? run_orientation(o, s, t_figure, "figure", opt, sitting) : run_orientation(o, s, s.t_end / 2, "mid", opt, sitting);
         if (r.series.empty()) {  // not begun: no sitting has reached it yet
           Json::Array row{Json(id), Json(s.label), Json(o.id), Json(h_um), Json(s.mu / units::cP), Json(s.n_sample), Json(s.dt / units::ns),
                           Json("not begun")};

@@ -24,7 +24,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   run::Hooks h;
   h.built = hooks.at_start;
   h.prepare = hooks.prepare;
-  h.after_step = hooks.after_step;
+  if (hooks.after_step) h.after_step = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport*, run::SeriesSet&) { hooks.after_step(ib); };
   h.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport* report, run::SeriesSet& series) {
     series["samples"].rows.push_back(hooks.sample(ib, report));
   };

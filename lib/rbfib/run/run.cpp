@@ -85,7 +85,7 @@ Run::Run(const std::string& text, const std::string& origin, Options options, Ho
   if (!continued_) {
     if (hooks_.prepare) hooks_.prepare(ib_);
     sample(nullptr);
-    if (hooks_.after_step) hooks_.after_step(ib_);
+    if (hooks_.after_step) hooks_.after_step(ib_, nullptr, record_.series);
     if (hooks_.snapshot) hooks_.snapshot(ib_);
   }
 }
@@ -146,7 +146,7 @@ Progress Run::evolve() {
       const double t = ib_.time();
       const bool last = t >= options_.t_end * (1 - 1e-12);
       if (sample_due(step, t, t1) || last) sample(&report);
-      if (hooks_.after_step) hooks_.after_step(ib_);
+      if (hooks_.after_step) hooks_.after_step(ib_, &report, record_.series);
       if (hooks_.snapshot && snapshot_due(step, t, t1)) hooks_.snapshot(ib_);
       if (last) record_.status = RunStatus::finished;
       else if (checkpoint_due(step, t, t1)) checkpoint();

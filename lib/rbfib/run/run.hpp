@@ -83,8 +83,9 @@ struct Hooks {
   std::function<void(sim::ImmersedBoundary&)> prepare;
   /// Appends this moment's samples to the series; `report` is null at the run's start.
   std::function<void(const sim::ImmersedBoundary&, const sim::IbStepReport* report, SeriesSet&)> sample;
-  /// Called after every step and once at the start of a fresh run.
-  std::function<void(const sim::ImmersedBoundary&)> after_step;
+  /// Called after every step (after its sample, if one was due) and once at the start of a fresh
+  /// run (report null); may add to the series (a sample at a moment of its own choosing).
+  std::function<void(const sim::ImmersedBoundary&, const sim::IbStepReport* report, SeriesSet&)> after_step;
   /// Writes a snapshot (io::SnapshotWriter) at the start of a fresh run and at its cadence.
   std::function<void(const sim::ImmersedBoundary&)> snapshot;
   /// Receives progress at its cadence and once when the sitting ends.
@@ -109,6 +110,8 @@ class Run {
   const sim::ImmersedBoundary& ib() const { return ib_; }
   const scene::Scene& scene() const { return scene_; }
   const SeriesSet& series() const { return record_.series; }
+  /// The series to add to between sittings (the next checkpoint keeps what is added).
+  SeriesSet& series() { return record_.series; }
   const Series& series(const std::string& name) const;
   bool continued() const { return continued_; }  ///< restored from its checkpoint
   Progress progress() const;

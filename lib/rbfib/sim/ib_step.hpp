@@ -65,7 +65,8 @@ struct AdaptiveStep {
 struct IbOptions {
   Coupling coupling = Coupling::seed;
   std::string kernel = "bspline3";  ///< a name from ib::kernel_names()
-  ib::Interpolation interpolation = ib::Interpolation::binned;
+  /// How forces are spread (Algs. 4.2-4.6; binned: points sorted once per step, added in place).
+  /// Interpolation always uses the sorted points (the binned algorithm).
   ib::Spreading spreading = ib::Spreading::binned;
   bool stopping_condition = true;   ///< check eq. 5.4 every step
   /// A uniform body force density added to the spread force every step (dyn/cm^3), e.g. a mean
