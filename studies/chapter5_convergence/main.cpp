@@ -14,20 +14,22 @@
 // orders are this formula one index higher: its row r holds p from eps_{r-2} / eps_{r-1} solved
 // with r - 1 in place of r - 2; the columns order_*_seed_index repeat that, row by row.
 // Each grid's run is built from a scene (docs/scenes.md) kept beside the results as
-// DIR/scene_r<r>.yaml, which `build/bin/rbfib run` reruns.
+// DIR/scene_r<r>.yaml, which `build/bin/rbfib run` reruns, and goes through the library's run
+// loop: at full scale with a checkpoint (DIR/checkpoint_r<r>.h5), so that the hours-long grids
+// continue over sittings (--sitting SECONDS).
 //
 // Run:   build/studies/study_chapter5_convergence --scale quick --out runs/chapter5_convergence
 #include "common/study.hpp"
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
+#include "rbfib/run/run.hpp"
 #include "rbfib/scene/scene.hpp"
 #include "rbfib/sim/ib_step.hpp"
 #include "rbfib/surface/geometry.hpp"
 #include "rbfib/surface/point_sets.hpp"
 #include "rbfib/surface/quadrature.hpp"
 
-#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -58,9 +60,10 @@ struct Run {
   int r = 0;
   dvec u_centres;          // 3 x 8000, the velocity at the r = 1 cell centres (cm/s)
   std::vector<double> X;   // the surface at the 1000 evaluation points, 1000 x 3 (cm)
-  double volume_change = 0, seconds = 0;
+  double volume_change = 0, seconds = 0;  // seconds: wall time of its steps, over all sittings
+  double seconds_per_step = NAN;
   int steps = 0;
-  std::string commit;  // the commit that computed it
+  std::string commit;  // the commit that began it
 };
 
 /// Grid r's setup as a scene (docs/scenes.md), in CGS to 17 digits so that it reads back exactly;
@@ -81,28 +84,54 @@ std::string scene_text(int r, double t_end) {
          to_text(1.1) + "]}\n";
 }
 
-Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& eval, const st::Options& opt) {
+/// Grid r's run through the library's run loop (run/run.hpp). Runs kept over sittings (full
+/// scale, or --resumable) keep DIR/checkpoint_r<r>.h5, written every five minutes of wall time
+/// and at the sitting's end, and continue from it; a finished grid is its checkpoint marked
+/// finished, from which the comparison data are taken again (quick scale always recomputes, so
+/// that a code change is never hidden by old runs). Returns the run, `finished` false when the
+/// sitting ended first.
+Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& eval, const st::Options& opt,
+          const st::Sitting& sitting, bool& finished) {
   const std::string text = scene_text(r, t_end), file = "scene_r" + to_text(r) + ".yaml";
   std::ofstream(opt.out_dir + "/" + file) << text;
-  const scene::Scene sc = scene::parse_scene(text, file);
-  sim::ImmersedBoundary ib = scene::build(sc);
-  const NavierStokesOptions& o = sc.fluid_options;
-  const sim::IbOptions& io = sc.ib;
+  run::Options o;
+  o.t_end = t_end;
+  o.label = st::source_commit(opt);
+  if (opt.keeps_runs()) {
+    o.checkpoint = opt.out_dir + "/checkpoint_r" + to_text(r) + ".h5";
+    o.sitting = std::max(0.0, sitting.remaining());
+  }
+  o.progress_every = {0, 0, 60};
+  run::Hooks h;
+  h.sample = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport* report, run::SeriesSet& series) {
+    if (report) return;  // the starting volume only
+    cells::CellForces f;
+    cells::compute_forces(ib.batch(0), f);
+    series["start"].columns = {"volume_cm3"};
+    series["start"].rows.push_back({f.cells.volume[0]});
+  };
+  h.progress = [&](const run::Progress& p) { st::log(opt, "r = " + to_text(r) + ": " + p.describe()); };
+  run::Run runner(text, file, o, h);
+  if (runner.continued()) st::log(opt, "r = " + to_text(r) + ": continuing from " + o.checkpoint + " at t = " + to_text(runner.ib().time() / units::us) + " us");
+  const run::Progress p = runner.evolve();
+  if (p.status == run::RunStatus::stopped) throw NumericalError(*p.stop_cause, "grid r = " + to_text(r) + ": " + p.stop_message);
+  Run run;
+  run.r = r;
+  run.steps = int(p.steps);
+  run.seconds = p.wall_seconds;
+  run.seconds_per_step = p.seconds_per_step();
+  run.commit = runner.label();
+  finished = p.status == run::RunStatus::finished;
+  if (!finished) return run;
+  const sim::ImmersedBoundary& ib = runner.ib();
   const cells::CellTypeSpec& spec = ib.batch(0).type().spec();
   cells::CellForces f;
   cells::compute_forces(ib.batch(0), f);
-  const double v0 = f.cells.volume[0];
-  Run run;
-  run.r = r;
-  run.steps = int(std::lround(t_end / o.dt));
-  const auto t0 = std::chrono::steady_clock::now();
-  for (int n = 0; n < run.steps; ++n) ib.step();
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  cells::compute_forces(ib.batch(0), f);
+  const double v0 = runner.series("start").rows.at(0).at(0);
   run.volume_change = (f.cells.volume[0] - v0) / v0;
   // u at the coarse cell centres, interpolated with the run's kernel.
   ib::Interaction probe({ib.fluid().operators().component_box(0), ib.fluid().operators().component_box(1),
-                         ib.fluid().operators().component_box(2)}, io.kernel);
+                         ib.fluid().operators().component_box(2)}, runner.scene().ib.kernel);
   probe.interpolate(centres, ib.fluid_state().u, run.u_centres);
   // The surface at the evaluation points, from the run's own interpolant of its data sites.
   const auto ops = surface::rbf_operators(spec.data_sites, eval, spec.basis);
@@ -113,54 +142,6 @@ Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& 
   st::log(opt, "r = " + to_text(r) + ": " + to_text(run.steps) + " steps in " + to_text(run.seconds) + " s, volume change " +
                    to_text(run.volume_change));
   return run;
-}
-
-/// At full scale each finished grid is kept in DIR/grid_r<r>.bin, written atomically (a
-/// temporary file, then a rename), so that the hours-long run continues from the grids it has
-/// when the same command is run again. Layout: one text line "rbfib chapter5_convergence grid
-/// <commit>" (the commit that computed it, from --commit, passed by the harness), then binary
-/// doubles: t_end, r, steps, seconds, volume change, u at the cell centres, X at the evaluation
-/// points. Quick scale always recomputes (minutes), so a code change is never hidden by old grids.
-std::string grid_file(const st::Options& opt, int r) { return opt.out_dir + "/grid_r" + std::to_string(r) + ".bin"; }
-
-
-void save_grid(const st::Options& opt, const Run& run, double t_end) {
-  const host_vector<double> u = run.u_centres;
-  std::vector<double> v{t_end, double(run.r), double(run.steps), run.seconds, run.volume_change};
-  v.insert(v.end(), u.begin(), u.end());
-  v.insert(v.end(), run.X.begin(), run.X.end());
-  const std::string path = grid_file(opt, run.r), tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    f << "rbfib chapter5_convergence grid " << run.commit << "\n";
-    f.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(double)));
-    f.flush();
-    if (!f) throw std::runtime_error("cannot write " + tmp);
-  }
-  std::filesystem::rename(tmp, path);
-}
-
-/// The grid r of an earlier full-scale run to the same t_end, if its file is there and complete.
-bool load_grid(const st::Options& opt, int r, double t_end, index_t nc, index_t ne, Run& run) {
-  std::ifstream f(grid_file(opt, r), std::ios::binary);
-  if (!f) return false;
-  std::string header;
-  std::getline(f, header);
-  const std::string tag = "rbfib chapter5_convergence grid ";
-  if (header.rfind(tag, 0) != 0) return false;
-  std::vector<double> v(static_cast<std::size_t>(5 + 3 * nc + 3 * ne));
-  f.read(reinterpret_cast<char*>(v.data()), std::streamsize(v.size() * sizeof(double)));
-  if (!f || f.peek() != EOF || v[0] != t_end || v[1] != r) return false;
-  run.r = r;
-  run.commit = header.substr(tag.size());
-  run.steps = int(v[2]);
-  run.seconds = v[3];
-  run.volume_change = v[4];
-  run.u_centres = dvec(v.begin() + 5, v.begin() + 5 + 3 * nc);
-  run.X.assign(v.begin() + 5 + 3 * nc, v.end());
-  st::log(opt, "r = " + to_text(r) + ": taken from " + grid_file(opt, r) + " (computed by commit " + run.commit + ", " +
-                   to_text(run.steps) + " steps in " + to_text(run.seconds) + " s)");
-  return true;
 }
 
 }  // namespace
@@ -201,7 +182,7 @@ int main(int argc, char** argv) {
     // ---- 3. Errors between successive grids and the seed's orders (Tables 5.1, 5.2) ------------
     // Written after every finished grid at full scale (a run stopped before r = 6 leaves the
     // tables of the grids it has, values.grids_completed saying how many), and at the end.
-    auto write = [&](const std::vector<Run>& runs, Json results) {
+    auto write = [&](const std::vector<Run>& runs, const Run& unfinished, Json results) {
       Json tu = st::table({"r", "u_err_2", "order_2", "u_err_inf", "order_inf", "order_2_seed_index", "order_inf_seed_index", "seconds"},
                           {"", "cm/s", "", "cm/s", "", "", "", "s"});
       Json tx = st::table({"r", "X_err_2", "order_2", "X_err_inf", "order_inf", "order_2_seed_index", "order_inf_seed_index", "seconds"},
@@ -265,7 +246,9 @@ int main(int argc, char** argv) {
         st::RunProgress p;
         p.t_end = t_end;
         for (const Run& run : runs)
-          if (run.r == r) p = {true, t_end, t_end, long(run.steps), run.seconds / run.steps, ""};
+          if (run.r == r) p = {true, t_end, t_end, long(run.steps), run.seconds_per_step, ""};
+        if (unfinished.r == r)  // how far this sitting took it
+          p = {false, unfinished.steps * 180 * units::ns / r, t_end, long(unfinished.steps), unfinished.seconds_per_step, ""};
         st::record_run(results, "grid_r" + to_text(r), p);
       }
       st::write_results(opt, results);
@@ -273,23 +256,22 @@ int main(int argc, char** argv) {
 
     // ---- 2. Runs ---------------------------------------------------------------------------------
     std::vector<Run> runs;
-    const st::Sitting sitting(opt);  // full scale: no new grid is started once this sitting's time is spent
+    Run unfinished;  // the grid this sitting ended in, if one
+    const st::Sitting sitting(opt);  // full scale: the wall time of this sitting, over the grids
     for (int r = 1; r <= r_max; ++r) {
-      Run run;
-      if (!full || !load_grid(opt, r, t_end, nc, eval.size(), run)) {
-        if (full && sitting.remaining() <= 0) {
-          st::log(opt, "sitting over: grids r >= " + to_text(r) + " are left for the next one");
-          break;
-        }
-        run = relax(r, t_end, centres, eval, opt);
-        run.commit = st::source_commit(opt);
-        if (full) save_grid(opt, run, t_end);
+      bool finished = false;
+      Run run = relax(r, t_end, centres, eval, opt, sitting, finished);
+      if (!finished) {
+        st::log(opt, "sitting over at grid r = " + to_text(r) + " (step " + to_text(run.steps) + "): the grids r >= " + to_text(r) +
+                         " are left for the next one");
+        unfinished = run;
+        break;
       }
       runs.push_back(std::move(run));
-      if (full && runs.size() >= 2) write(runs, results);
+      if (full && runs.size() >= 2) write(runs, unfinished, results);
     }
 
-    write(runs, results);
+    write(runs, unfinished, results);
     return 0;
   });
 }

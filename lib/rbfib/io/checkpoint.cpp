@@ -119,6 +119,7 @@ void write_checkpoint(const std::string& path, const std::string& scene_yaml, co
     h5::attribute(file, "stop_cause", std::string(to_string(record.stop_cause)));
     h5::attribute(file, "wall_seconds", record.wall_seconds);
     h5::attribute(file, "steps_timed", record.steps_timed);
+    h5::attribute(file, "label", record.label);
     h5::write_bytes(file, "scene", scene_yaml);
     {
       Id series = h5::create_group(file, "series");
@@ -197,6 +198,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   k.record.stop_cause = cause_named(r.string_attribute(file, "stop_cause"), r);
   k.record.wall_seconds = r.attribute<double>(file, "wall_seconds", H5T_NATIVE_DOUBLE);
   k.record.steps_timed = r.attribute<long>(file, "steps_timed", H5T_NATIVE_LONG);
+  k.record.label = r.string_attribute(file, "label");
   if (H5Lexists(file, "series", H5P_DEFAULT) <= 0) r.fail("series");
   Id series{H5Gopen2(file, "series", H5P_DEFAULT), H5Gclose};
   H5G_info_t info;

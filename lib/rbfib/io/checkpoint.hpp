@@ -13,7 +13,7 @@
 //   /series/<name>/values every row of the series, one after the other; .../widths each row's
 //                         length; attribute columns (the columns' names, one per line; may be empty)
 //   attributes of /: format ("rbfib checkpoint 2"), steps, dt (s), level, allowing, status
-//   ("running", "finished" or "stopped"), stop_message, stop_cause, wall_seconds, steps_timed
+//   ("running", "finished" or "stopped"), stop_message, stop_cause, wall_seconds, steps_timed, label
 // Format 1 (no series, no run attributes) is read as a running run without series.
 // Written atomically: to PATH.tmp, flushed and fsynced, then renamed over PATH (and the
 // directory fsynced), so a kill at any moment leaves the previous checkpoint whole.
@@ -43,6 +43,7 @@ struct RunRecord {
   Cause stop_cause = Cause::solver;  ///< and its cause
   double wall_seconds = 0;           ///< wall time of the steps taken, over all sittings (s)
   long steps_timed = 0;              ///< the steps those seconds took
+  std::string label;                 ///< free text kept with the run (e.g. the code version that began it)
   std::map<std::string, Series> series;
 };
 

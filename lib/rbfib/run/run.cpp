@@ -83,6 +83,7 @@ Run::Run(const std::string& text, const std::string& origin, Options options, Ho
     }
   }
   if (!continued_) {
+    record_.label = options_.label;
     if (hooks_.prepare) hooks_.prepare(ib_);
     sample(nullptr);
     if (hooks_.after_step) hooks_.after_step(ib_, nullptr, record_.series);

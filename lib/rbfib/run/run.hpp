@@ -48,6 +48,7 @@ struct Options {
   Cadence sample_every{1, 0, 0};        ///< samples: after these steps (and at the start and the end)
   Cadence snapshot_every;               ///< snapshots (Hooks::snapshot): after these steps
   Cadence progress_every{0, 0, 30};     ///< progress lines (Hooks::progress)
+  std::string label;                    ///< kept in the checkpoint of a fresh run (e.g. the code version)
 };
 
 /// Where a run stands, for progress lines and reports.
@@ -114,6 +115,7 @@ class Run {
   SeriesSet& series() { return record_.series; }
   const Series& series(const std::string& name) const;
   bool continued() const { return continued_; }  ///< restored from its checkpoint
+  const std::string& label() const { return record_.label; }  ///< the label of the sitting that began it
   Progress progress() const;
   /// Writes the checkpoint now (no-op without one).
   void checkpoint();
