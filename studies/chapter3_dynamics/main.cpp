@@ -36,14 +36,10 @@
 //       (or python3 -m harness run chapter3_dynamics --scale quick)
 #include "common/chapter3_relaxation.hpp"
 #include "common/study.hpp"
-#include "rbfib/cells/batch.hpp"
 #include "rbfib/cells/shapes.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/exec.hpp"
-#include "rbfib/core/threads.hpp"
-#include "rbfib/fluid/periodic_stokes.hpp"
 #include "rbfib/ib/interaction.hpp"
-#include "rbfib/linalg/blas.hpp"
 #include "rbfib/linalg/dense.hpp"
 #include "rbfib/mechanics/ldsm.hpp"
 #include "rbfib/surface/operators.hpp"
@@ -111,94 +107,14 @@ EvaluationSet even_spiral_set(index_t n) {
   return e;
 }
 
-/// X += dt U over `count` values on the device (eq. 87).
-void forward_euler(double* X, const double* U, double dt, index_t count) {
-  for_each_index(count, [=] RBFIB_HD(index_t i) { X[i] += dt * U[i]; });
-}
-
-/// SHVD relaxation measured at one evaluation site
-/// chapter3::Relaxation measures SHVD's d_max at the material point (0, 0) (its interpolant there),
-/// while the paper's d_max point is the rightmost evaluation site, off the axis on most sets. So the
-/// driver steps SHVD itself here, with the steps 1-6 of Sec. 3.3 of
-/// studies/common/chapter3_relaxation.cpp, and records d_axis = (x_s - c_x)(t) - (x_s - c_x)(0)
-/// at evaluation site s (c: the centroid of the force call's quadrature, as there). On an odd
-/// spiral with s = its site at (0, 0) it gives the library's run (value rightmost_loop_vs_library).
-RelaxationResult relax_shvd_at_site(const RelaxationSpec& spec, const EvaluationSet& e, index_t site) {
+/// SHVD relaxation measured at one evaluation site: chapter3::Relaxation measures SHVD's d_max at
+/// the material point (0, 0) (its interpolant there) unless told a site, while the paper's d_max
+/// point is the rightmost evaluation site, off the axis on most sets. On an odd spiral with s = its
+/// site at (0, 0) the two agree to rounding (value rightmost_loop_vs_library).
+RelaxationResult relax_shvd_at_site(RelaxationSpec spec, const EvaluationSet& e, index_t site) {
   require(site >= 0 && site < e.size(), "evaluation site", site, "must be a site of the set");
-  // the fluid: the periodic MAC grid on [-L, L]^3, the exact Stokes solve (alpha = 0), the kernel
-  MacGrid grid = make_mac_grid(3, {spec.eta, spec.eta, spec.eta}, {2 * spec.L, 2 * spec.L, 2 * spec.L},
-                               {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
-  grid.origin = {-spec.L, -spec.L, -spec.L};
-  PeriodicStokesSolver stokes(grid, spec.mu, 0.0);
-  ib::Interaction ib({stokes.operators().component_box(0), stokes.operators().component_box(1),
-                      stokes.operators().component_box(2)},
-                     spec.kernel);
-  VectorField f, u;
-  dvec p, U;
-  // the cell: unit-sphere reference, the degree-M interpolant through the m sites, the n sites
-  cells::CellTypeSpec ts;
-  ts.name = "SHVD m = " + to_text((spec.M + 1) * (spec.M + 1));
-  ts.shape = cells::ellipsoid_shape(1, 1, 1);
-  ts.data_sites = interpolation_sites(spec.M);
-  ts.sample_sites = e.sites;
-  ts.interpolant = cells::Interpolant::spherical_harmonics;
-  ts.sh_degree = spec.M;
-  ts.sphere_weights = e.w;
-  ts.model.elastic = total_energy(spec.Gs, spec.A, spec.sigma);
-  cells::Batch batch(std::make_shared<const cells::CellType>(ts), std::vector<cells::Placement>{cells::Placement{}});
-  const std::vector<double> X0 = spec.shape.points(ts.data_sites);  // eq. (88) or (89) at the m sites
-  thrust::copy(X0.begin(), X0.end(), batch.state().storage().begin());
-  const index_t n = e.size(), m = batch.type().n_data();
-  cells::CellForces out;
-  ib::SortedPoints at_eval, at_interp;
-  RelaxationResult r;
-  double x0 = 0;
-  const auto t0 = clock_type::now();
-  for (int k = 0; k <= spec.steps; ++k) {
-    share_cores();
-    try {
-      cells::compute_forces(batch, out);  // steps 1-2 (and F^ = F dA0)
-      if (k == 0 || k == spec.steps || (spec.record_every > 0 && k % spec.record_every == 0)) {
-        const std::vector<double> Xs = out.positions.to_host();
-        const double c[3] = {out.cells.centroid[0][0], out.cells.centroid[0][1], out.cells.centroid[0][2]};
-        if (k == 0) {
-          x0 = Xs[site] - c[0];
-          const std::vector<double> F0 = out.force.to_host();
-          double sum[3] = {0, 0, 0};
-          for (std::size_t i = 0; i < F0.size(); ++i) {
-            sum[i / n] += F0[i];
-            r.max_force0 = std::max(r.max_force0, std::abs(F0[i]));
-          }
-          r.force_integral0 = std::max({std::abs(sum[0]), std::abs(sum[1]), std::abs(sum[2])});
-        }
-        Sample s{k * spec.dt, Xs[site] - c[0] - x0, 0, INFINITY, out.cells.volume[0]};
-        for (index_t i = 0; i < n; ++i) {
-          const double dx = Xs[i] - c[0], dy = Xs[n + i] - c[1], dz = Xs[2 * n + i] - c[2];
-          const double rad = std::sqrt(dx * dx + dy * dy + dz * dz);
-          s.r_max = std::max(s.r_max, rad - 1);
-          s.r_min = std::min(s.r_min, rad - 1);
-        }
-        r.series.push_back(s);
-      }
-      if (k == spec.steps) break;
-      ib.sort(ptr(out.positions.storage()), n, at_eval);  // step 3
-      ib.spread(at_eval, ptr(out.force.storage()), f);
-      stokes.solve(f, u, p);                       // step 4
-      double* Xm = ptr(batch.state().storage());  // step 5: the velocity at the m sites
-      ib.sort(Xm, m, at_interp);
-      U.resize(static_cast<std::size_t>(3 * m));
-      ib.interpolate(at_interp, u, ptr(U));
-      if (!blas::all_finite(U)) throw NumericalError(Cause::non_finite, "SHVD: non-finite interpolated velocity at step " + to_text(k));
-      forward_euler(Xm, ptr(U), spec.dt, 3 * m);  // step 6, eq. (87)
-      r.steps = k + 1;
-    } catch (const NumericalError& err) {
-      r.failed = true;
-      r.failure = "SHVD at step " + to_text(k) + " (t = " + to_text(k * spec.dt) + "): " + err.what();
-      break;
-    }
-  }
-  r.seconds = since(t0);
-  return r;
+  spec.measure_site = site;
+  return relax(spec, e);
 }
 
 /// The runs of the study: each computed once per invocation; at full scale also kept in
@@ -649,7 +565,8 @@ void fig5_rightmost(const Setup& S, Runs& runs, Json& T, Json& V) {
     const bool all = xs[m].size() == S.fig5_etas.size();
     V[std::string("fig5_rightmost_order_fit_") + to_string(m)] = all ? num(st::power_law_order(xs[m], es[m])) : Json();
   }
-  // The driver's SHVD loop against the library's on the coarsest grid (the same run).
+  // SHVD measured at the site (0, 0) against SHVD measured at the material point (0, 0) by its
+  // interpolant, on the coarsest grid (the same run).
   {
     const RelaxationSpec s = S.spec(Method::shvd, S.ellipsoid, S.fig5_etas.front(), S.fig5_t, S.fig5_M, 12);
     const RelaxationResult& lib = runs.get(s, S.n_for(s.eta), "ellipsoid");

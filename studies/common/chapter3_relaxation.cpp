@@ -231,6 +231,7 @@ struct Relaxation::Impl {
       : spec(s), eval(e), fluid(s.eta, s.L, s.mu, s.kernel), energies(total_energy(s.Gs, s.A, s.sigma)) {
     require(spec.steps >= 0, "steps", spec.steps, "must be >= 0");
     require(spec.dt > 0, "time step dt", spec.dt, "must be > 0");
+    require(spec.measure_site < index_t(eval.size()), "measure_site", spec.measure_site, "must be a site of the evaluation set");
     if (spec.method == Method::shvd) {
       // The cell type: unit-sphere reference, the degree-M interpolant through the m sites (LU of
       // Y once), the n evaluation sites with their weights, the total energy of Sec. 4.2.
@@ -282,9 +283,12 @@ struct Relaxation::Impl {
     }
     if (record_now()) {
       const double c[3] = {out.cells.centroid[0][0], out.cells.centroid[0][1], out.cells.centroid[0][2]};
-      // the material point (0, 0) on the interpolant (an evaluation site of the spirals)
-      const double x_axis = surface::jets_from_operators(*axis_ops, batch->positions_host())[0].x[0];
-      record(out.positions.to_host(), x_axis, c, out.cells.volume[0]);
+      // the material point (0, 0) on the interpolant (an evaluation site of the spirals), or the
+      // evaluation site asked for
+      const std::vector<double> Xs = out.positions.to_host();
+      const double x_axis = spec.measure_site >= 0 ? Xs.at(std::size_t(spec.measure_site))
+                                                   : surface::jets_from_operators(*axis_ops, batch->positions_host())[0].x[0];
+      record(Xs, x_axis, c, out.cells.volume[0]);
     }
     if (k == spec.steps) return;
     add(r.phases.forces, per_step.forces, t_forces);

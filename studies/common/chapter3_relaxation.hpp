@@ -91,6 +91,9 @@ struct RelaxationSpec {
   int M = 7;             ///< SHVD: harmonic degree, m = (M+1)^2 interpolation sites
   double Gs = 1, A = 1, sigma = 1;
   std::string kernel = "peskin4";
+  /// SHVD: measure d_axis at this evaluation site (e.g. the paper's rightmost site) instead of at
+  /// the interpolant's material point (0, 0); -1: the material point.
+  index_t measure_site = -1;
 };
 
 struct Sample {
