@@ -145,15 +145,15 @@ Run relax(int cells_per_axis, double dt, index_t n_sample, double radius, double
   r.h_um = g.h(0) / units::um;
   r.dt_us = dt / units::us;
   r.n_sample = n_sample;
-  cells::CellForces f;
-  cells::compute_forces(ib.batch(0), f);
+  cells::CellGeometry f;
+  cells::measure(ib.batch(0), f);
   r.volume0 = f.cells.volume[0];
   r.steps = int(std::lround(t_end / dt));
   const auto t0 = std::chrono::steady_clock::now();
   for (int n = 0; n < r.steps; ++n) ib.step();
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.seconds_per_step = r.seconds / r.steps;
-  cells::compute_forces(ib.batch(0), f);
+  cells::measure(ib.batch(0), f);
   r.volume = f.cells.volume[0];
   for (int a = 0; a < 3; ++a) r.u[a] = ib.fluid_state().u[a];
   r.X = ib.batch(0).positions_host();

@@ -269,9 +269,9 @@ struct Sites {
 };
 
 Sites sites(const sim::ImmersedBoundary& ib) {
-  cells::CellForces f;
-  cells::compute_forces(ib.batch(0), f);
-  return {f.positions.to_host(), ib.batch(0).type().n_sample(), f.cells};
+  cells::CellGeometry g;
+  cells::measure(ib.batch(0), g);
+  return {g.positions.to_host(), ib.batch(0).type().n_sample(), g.cells};
 }
 
 /// Nearest periodic image of a difference along x and z.

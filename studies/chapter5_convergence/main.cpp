@@ -105,8 +105,8 @@ Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& 
   run::Hooks h;
   h.sample = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport* report, run::SeriesSet& series) {
     if (report) return;  // the starting volume only
-    cells::CellForces f;
-    cells::compute_forces(ib.batch(0), f);
+    cells::CellGeometry f;
+    cells::measure(ib.batch(0), f);
     series["start"].columns = {"volume_cm3"};
     series["start"].rows.push_back({f.cells.volume[0]});
   };
@@ -125,8 +125,8 @@ Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& 
   if (!finished) return run;
   const sim::ImmersedBoundary& ib = runner.ib();
   const cells::CellTypeSpec& spec = ib.batch(0).type().spec();
-  cells::CellForces f;
-  cells::compute_forces(ib.batch(0), f);
+  cells::CellGeometry f;
+  cells::measure(ib.batch(0), f);
   const double v0 = runner.series("start").rows.at(0).at(0);
   run.volume_change = (f.cells.volume[0] - v0) / v0;
   // u at the coarse cell centres, interpolated with the run's kernel.

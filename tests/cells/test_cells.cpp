@@ -290,6 +290,36 @@ TEST(CellsBatch, DiagnosticsOfASphereMatchClosedForms) {
   EXPECT_NEAR(type->reference_area(), 4 * pi * R * R, 1e-5 * 4 * pi * R * R);
 }
 
+TEST(CellsBatch, MeasureGivesTheForceCallsGeometryWithoutItsForces) {
+  // Three placed (stretched, moved) red cells: positions, areas, volumes and centroids as the force
+  // call's, to rounding (another product width may sum in another order); a collapsed cell is named.
+  const auto type = small_red_cell();
+  Batch b(type, three_placements());
+  CellForces f;
+  compute_forces(b, f);
+  CellGeometry g;
+  measure(b, g);
+  const std::vector<double> pf = f.positions.to_host(), pg = g.positions.to_host();
+  ASSERT_EQ(pf.size(), pg.size());
+  for (std::size_t k = 0; k < pf.size(); ++k) ASSERT_NEAR(pg[k], pf[k], 1e-14 * um) << k;
+  for (index_t c = 0; c < b.size(); ++c) {
+    EXPECT_NEAR(g.cells.area[c], f.cells.area[c], 1e-13 * f.cells.area[c]);
+    EXPECT_NEAR(g.cells.volume[c], f.cells.volume[c], 1e-13 * f.cells.volume[c]);
+    for (int d = 0; d < 3; ++d) EXPECT_NEAR(g.cells.centroid[c][d], f.cells.centroid[c][d], 1e-13 * um);
+  }
+  EXPECT_TRUE(g.cells.energy.empty());
+  const index_t nd = type->n_data(), N = b.size();
+  for (index_t d = 0; d < 3; ++d)
+    thrust::fill(b.state().storage().begin() + (d * N + 2) * nd, b.state().storage().begin() + (d * N + 3) * nd, 0.0);
+  try {
+    measure(b, g);
+    ADD_FAILURE() << "no error for a collapsed cell";
+  } catch (const NumericalError& e) {
+    EXPECT_EQ(e.cause(), Cause::degenerate_site);
+    EXPECT_NE(std::string(e.what()).find("cell 2"), std::string::npos) << e.what();
+  }
+}
+
 TEST(CellsBatch, BodyForceIsSpreadInProportionToTheReferenceArea) {
   const auto type = skalak_sphere(2 * um, 144, 400);
   Batch b(type, three_placements());

@@ -283,4 +283,57 @@ void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings) 
   if (timings) timings->reductions = seconds_since(t0);
 }
 
+void measure(const Batch& batch, CellGeometry& out) {
+  const CellType& type = batch.type();
+  const std::string& name = type.name();
+  const index_t N = batch.size(), ns = type.n_sample(), nd = type.n_data(), total = N * ns;
+  Batch::Workspace& w = batch.workspace();
+  // Jets of the positions at the sample (and data) sites: value and derivatives.
+  const index_t nj = type.jet_sites(), ldd = surface::derivative_count * nj;
+  w.values.resize(nj, 3 * N);
+  w.derivatives.resize(ldd, 3 * N);
+  surface::apply_operators(type.operators(), batch.state().view().block(0, 0, nd, 3 * N), w.values.view(), w.derivatives.view(), w.ops);
+  out.positions.resize(ns, 3 * N);
+  linalg::copy(w.values.view().block(0, 0, ns, 3 * N), out.positions.view());
+  const JetView xj{ptr(w.values.storage()), nj, ptr(w.derivatives.storage()), ldd, nj, N};
+  const JetView zj = type.reference_jets();
+  const double* dA0 = ptr(type.dA0());
+  constexpr int q = 5;  // area, volume, 3 volume moments
+  w.status.resize(static_cast<std::size_t>(total));
+  w.site_sums.resize(static_cast<std::size_t>(q * total));
+  double* sums = ptr(w.site_sums);
+  int* stat = ptr(w.status);
+  for_each_index(total, [=] RBFIB_HD (index_t k) {
+    const index_t i = k % ns;
+    const Jet X = xj.jet(k / ns, i), Z = zj.jet(0, i);
+    const surface::PointGeometry g = surface::point_geometry(X), g0 = surface::point_geometry(Z);
+    const bool ok = g.det_g > 0 && g0.det_g > 0;
+    stat[k] = ok ? 0 : mechanics::force_degenerate_metric;
+    const double dA = ok ? sqrt(g.det_g / g0.det_g) * dA0[i] : 0.0;
+    // The force call's divergence-theorem sums: V = (1/3) int X . n dA, int_V x_d dV = (1/2) int x_d^2 n_d dA.
+    sums[0 * total + k] = dA;
+    sums[1 * total + k] = (X.x[0] * g.n[0] + X.x[1] * g.n[1] + X.x[2] * g.n[2]) * dA / 3;
+    for (int d = 0; d < 3; ++d) sums[(2 + d) * total + k] = 0.5 * X.x[d] * X.x[d] * g.n[d] * dA;
+  });
+  raise_first_bad(w.status, ns, name, "sample");
+  w.cell_sums.resize(static_cast<std::size_t>(q * N));
+  if (static_cast<index_t>(w.ones.size()) != ns) w.ones.assign(static_cast<std::size_t>(ns), 1.0);
+  linalg::gemm(linalg::Op::transpose, linalg::Op::none, 1.0, linalg::ConstMatrixView{ptr(w.site_sums), ns, q * N, ns},
+               linalg::ConstMatrixView{ptr(w.ones), ns, 1, ns}, 0.0, linalg::MatrixView{ptr(w.cell_sums), q * N, 1, q * N});
+  std::vector<double> s(w.cell_sums.size());
+  thrust::copy(w.cell_sums.begin(), w.cell_sums.end(), s.begin());
+  CellDiagnostics& cd = out.cells;
+  cd.energy.clear();
+  cd.dissipation.clear();
+  cd.area.assign(s.begin(), s.begin() + N);
+  cd.volume.assign(s.begin() + N, s.begin() + 2 * N);
+  cd.centroid.assign(static_cast<std::size_t>(N), {0, 0, 0});
+  for (index_t c = 0; c < N; ++c) {
+    if (!(cd.volume[c] > 0))
+      throw NumericalError(Cause::inverted_cell, "cell type '" + name + "', cell " + to_text(c) + ": enclosed volume " +
+                                                     to_text(cd.volume[c]) + " cm^3 <= 0 (the surface is turned inside out)");
+    for (int d = 0; d < 3; ++d) cd.centroid[c][d] = s[(2 + d) * N + c] / cd.volume[c];
+  }
+}
+
 }  // namespace rbfib::cells

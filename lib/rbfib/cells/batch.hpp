@@ -123,4 +123,15 @@ class Batch {
 /// (enclosed volume <= 0); `out` is then unspecified.
 void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings = nullptr);
 
+/// The geometry of every cell of a batch, without its forces (for samples and diagnostics).
+struct CellGeometry {
+  linalg::DeviceMatrix positions;  ///< sample-site positions (cm), n_s x 3N
+  CellDiagnostics cells;           ///< area, volume and centroid (energy and dissipation are left empty)
+};
+
+/// The sample-site positions and each cell's area, enclosed volume and centroid, by the force
+/// call's quadrature (one product of the position columns only, one site launch, one reduction).
+/// Throws NumericalError for a degenerate site or a cell turned inside out, as the force call does.
+void measure(const Batch& batch, CellGeometry& out);
+
 }  // namespace rbfib::cells
