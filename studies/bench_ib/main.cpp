@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
     const double box = 16.0 * units::um;
     const index_t n = index_t(1) << 16;
     const int N = 64;
-    const std::string kernel = "bspline3";
+    const ib::Kernel kernel = ib::Kernel::bspline3;
     const int s = kernel_support(kernel);
     const int threads = omp_get_max_threads();
     const int repeats = full ? 21 : 7;
@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
     par["points"] = double(n);
     par["refinement"] = N;
     par["box_um"] = box / units::um;
-    par["kernel"] = kernel;
+    par["kernel"] = ib::to_string(kernel);
     par["threads"] = threads;
     par["repeats"] = repeats;
     par["cpu_mhz"] = cpu_mhz();

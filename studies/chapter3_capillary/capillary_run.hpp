@@ -74,7 +74,7 @@ struct Model {
   int steps = 500;
   int record_every = 25;  ///< steps between records of the series
   int view_every = 50;    ///< steps between kept surface states (views and snapshots)
-  std::string kernel = "peskin4";
+  ib::Kernel kernel = ib::Kernel::peskin4;
   double h() const { return 2 * L / eta; }
 };
 

@@ -183,7 +183,7 @@ int main(int argc, char** argv) {
       const char* run = p == max_threads ? "all threads" : "1 thread";
       for (index_t N : {index_t(1), index_t(2), index_t(4), index_t(8)}) {
         sim::IbOptions io;
-        io.kernel = "bspline3";
+        io.kernel = ib::Kernel::bspline3;
         sim::ImmersedBoundary ib = sheared(g1, 0.1 * units::us, io);
         ib.add(cells::Batch(rbc864, stacked(N)));
         // Per call: interpolation at the data sites, spreading from the sample sites of the forces.

@@ -43,7 +43,7 @@ struct Params {
   double spring = 1e-2 * units::dyn / units::cm;   // k
   double viscosity = 0.1 * units::cP;              // plasma, seed Sec. 1.1
   double dt = 0.1 * units::us;
-  std::string kernel = "bspline3";
+  ib::Kernel kernel = ib::Kernel::bspline3;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -158,7 +158,7 @@ int main(int argc, char** argv) {
     Json& par = results["parameters"];
     par["box_um"] = p.box / units::um;
     par["points"] = double(n);
-    par["kernel"] = p.kernel;
+    par["kernel"] = ib::to_string(p.kernel);
     par["shear_rate_per_s"] = p.shear_rate;
     par["spring_dyn_per_cm"] = p.spring;
     par["viscosity_cP"] = p.viscosity / units::cP;
@@ -176,7 +176,7 @@ int main(int argc, char** argv) {
       par["load_average_at_start"] = load;  // this machine is shared: times are indicative
     }
     par["machine_paper"] = "48x Intel Xeon E5-2697 v2 2.70GHz (16 cores used), libiomp5, clang 7.0.1";
-    st::log(opt, "parameters: n = " + std::to_string(n) + ", box = 16 um, kernel " + p.kernel + ", gamma_dot = 1000/s, k = 1e-2 dyn/cm, dt = 0.1 us, " +
+    st::log(opt, "parameters: n = " + std::to_string(n) + ", box = 16 um, kernel " + std::string(ib::to_string(p.kernel)) + ", gamma_dot = 1000/s, k = 1e-2 dyn/cm, dt = 0.1 us, " +
                      std::to_string(steps) + " steps (" + std::to_string(steps_serial) + " for the serial algorithms), " +
                      std::to_string(max_threads) + " threads");
 

@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
                             "second_moment_max", "phi0", "even_odd_err"},
                            {"", "h", "", "h", "", "", "h^2", "h^2", "", ""});
     for (const std::string& name : kernel_names())
-      with_kernel(name, [&](auto kernel) {
+      with_kernel(kernel_named(name), [&](auto kernel) {
         using K = decltype(kernel);
         for (int m = 0; m <= 500; ++m) {
           const double r = (m - 250) / 100.0;
@@ -156,7 +156,7 @@ int main(int argc, char** argv) {
     Json direct = st::table({"kernel", "N", "h_um", "err_inf"}, {"", "", "um", ""});
     std::vector<double> Ud;
     for (const std::string& name : kernel_names()) {
-      with_kernel(name, [&](auto kernel) {
+      with_kernel(kernel_named(name), [&](auto kernel) {
         using K = decltype(kernel);
         for (int N : direct_grids)
           direct["rows"].push(Json::Array{Json(name), Json(N), Json(L / N / units::um), Json(direct_error<K>(Xh, N, Ud))});
@@ -167,12 +167,12 @@ int main(int argc, char** argv) {
       std::array<dvec, 3> u;
       for (int c = 0; c < 3; ++c) u[c] = sample(boxes[c], f);
       for (const std::string& name : kernel_names()) {
-        Interaction ib(boxes, name);
+        Interaction ib(boxes, kernel_named(name));
         dvec U;
         ib.interpolate(X, u, U);
         const double seconds = st::median_seconds(repeats, [&] { ib.interpolate(X, u, U); });
         const host_vector<double> Uh = U;
-        with_kernel(name, [&](auto kernel) { direct_error<decltype(kernel)>(Xh, N, Ud); });
+        with_kernel(kernel_named(name), [&](auto kernel) { direct_error<decltype(kernel)>(Xh, N, Ud); });
         double err = 0, diff = 0;
         for (int c = 0; c < 3; ++c)
           for (int p = 0; p < points; ++p) {

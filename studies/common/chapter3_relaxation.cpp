@@ -37,7 +37,7 @@ struct Fluid {
   ib::Interaction ib;
   VectorField f, u;
   dvec p;
-  Fluid(int eta, double L, double mu, const std::string& kernel)
+  Fluid(int eta, double L, double mu, ib::Kernel kernel)
       : grid(periodic_grid(eta, L)),
         stokes(grid, mu, 0.0),
         ib({stokes.operators().component_box(0), stokes.operators().component_box(1),

@@ -32,6 +32,7 @@
 //   c: the centroid of the enclosed volume (SHVD: the force call's quadrature; LDSM: the
 //      triangulated polyhedron).
 #include "rbfib/core/exec.hpp"
+#include "rbfib/ib/kernels.hpp"
 #include "rbfib/mechanics/energy.hpp"
 #include "rbfib/surface/point_sets.hpp"
 #include "rbfib/surface/shapes.hpp"
@@ -90,7 +91,7 @@ struct RelaxationSpec {
   int record_every = 0;  ///< record the diagnostics every so many steps (0: first and last only)
   int M = 7;             ///< SHVD: harmonic degree, m = (M+1)^2 interpolation sites
   double Gs = 1, A = 1, sigma = 1;
-  std::string kernel = "peskin4";
+  ib::Kernel kernel = ib::Kernel::peskin4;
   /// SHVD: measure d_axis at this evaluation site (e.g. the paper's rightmost site) instead of at
   /// the interpolant's material point (0, 0); -1: the material point.
   index_t measure_site = -1;

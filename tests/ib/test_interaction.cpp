@@ -29,7 +29,7 @@ using HostPoints = std::vector<double>;  // x..., y..., z...
 
 std::function<double(double)> phi_of(const std::string& kernel) {
   std::function<double(double)> f;
-  with_kernel(kernel, [&](auto k) { f = [](double r) { return decltype(k)::phi(r); }; });
+  with_kernel(kernel_named(kernel), [&](auto k) { f = [](double r) { return decltype(k)::phi(r); }; });
   return f;
 }
 
@@ -201,7 +201,7 @@ std::vector<double> to_host(const dvec& v) {
 TEST(IbInteraction, SpreadingVariantsEqualSerialAndDefinition) {
   for (const Case& c : all_cases()) {
     const auto boxes = boxes_for(c.walls);
-    Interaction ib(boxes, c.kernel);
+    Interaction ib(boxes, kernel_named(c.kernel));
     const HostPoints X = make_points(c.layout, c.n, 7);
     const HostPoints F = random_values(3 * c.n, 11);
     const Direct direct = direct_spread(boxes, c.kernel, X, F);
@@ -233,7 +233,7 @@ TEST(IbInteraction, SpreadingVariantsEqualSerialAndDefinition) {
 TEST(IbInteraction, InterpolationVariantsEqualDefinition) {
   for (const Case& c : all_cases()) {
     const auto boxes = boxes_for(c.walls);
-    Interaction ib(boxes, c.kernel);
+    Interaction ib(boxes, kernel_named(c.kernel));
     const HostPoints X = make_points(c.layout, c.n, 5);
     std::array<std::vector<double>, 3> u;
     std::array<dvec, 3> du;
@@ -261,7 +261,7 @@ TEST(IbInteraction, InterpolationVariantsEqualDefinition) {
 TEST(IbInteraction, SpreadingIsAdjointOfInterpolation) {
   for (const Case& c : all_cases()) {
     const auto boxes = boxes_for(c.walls);
-    Interaction ib(boxes, c.kernel);
+    Interaction ib(boxes, kernel_named(c.kernel));
     const HostPoints X = make_points(c.layout, c.n, 3);
     const HostPoints F = random_values(3 * c.n, 4);
     std::array<dvec, 3> du;
@@ -298,7 +298,7 @@ TEST(IbInteraction, TotalForceIsConserved) {
   for (const Case& c : all_cases()) {
     if (c.layout == Layout::walls) continue;  // supports cut by the wall lose force by design
     const auto boxes = boxes_for(c.walls);
-    Interaction ib(boxes, c.kernel);
+    Interaction ib(boxes, kernel_named(c.kernel));
     HostPoints X = make_points(c.layout, c.n, 9);
     if (c.walls)  // keep supports away from the walls along y and z: x in [3h, L - 3h]
       for (int a = 1; a < 3; ++a) {
@@ -326,7 +326,7 @@ TEST(IbInteraction, TotalForceIsConserved) {
 
 TEST(IbInteraction, PeriodicImagesGiveTheSameResult) {
   const auto boxes = boxes_for(false);
-  Interaction ib(boxes, "bspline3");
+  Interaction ib(boxes, Kernel::bspline3);
   const size_t n = 100;
   HostPoints X = make_points(Layout::random, n, 1), Y = X;
   for (size_t k = 0; k < n; ++k)
@@ -356,7 +356,7 @@ void expect_input_error(F f, const std::string& field) {
 
 TEST(IbInteraction, BadInputIsReported) {
   const auto walls = boxes_for(true);
-  Interaction ib(walls, "peskin4");
+  Interaction ib(walls, Kernel::peskin4);
   const size_t n = 10;
   HostPoints X = make_points(Layout::random, n, 1);
   const HostPoints F(3 * n, 1.0);
@@ -382,9 +382,9 @@ TEST(IbInteraction, BadInputIsReported) {
   expect_input_error([&] { ib.spread(dvec(X.begin(), X.end()), dvec(F.begin(), F.end() - 3), f); }, "F.size");
   expect_input_error([&] { ib.interpolate(dvec(X.begin(), X.end()), {dvec(5), u[1], u[2]}, U); }, "u[0].size");
   // A kernel wider than the grid.
-  expect_input_error([] { Interaction(mac_boxes({3, 8, 8}, {1.0, 1.0, 1.0}, {true, true, true}), "bspline3"); }, "grid.x.cells");
-  expect_input_error([] { Interaction(mac_boxes({8, 8, 2}, {1.0, 1.0, 1.0}, {true, true, true}), "roma3"); }, "grid.z.cells");
-  expect_input_error([] { Interaction(boxes_for(false), "delta"); }, "kernel");
+  expect_input_error([] { Interaction(mac_boxes({3, 8, 8}, {1.0, 1.0, 1.0}, {true, true, true}), Kernel::bspline3); }, "grid.x.cells");
+  expect_input_error([] { Interaction(mac_boxes({8, 8, 2}, {1.0, 1.0, 1.0}, {true, true, true}), Kernel::roma3); }, "grid.z.cells");
+  expect_input_error([] { kernel_named("delta"); }, "kernel");
 }
 
 TEST(IbGrid, KeysAreInjectiveAndInvertible) {
@@ -454,7 +454,7 @@ TEST(IbInteraction, BinnedSlabsForFewPlanes) {
     for (bool walls : {false, true})
       for (int cz : {4, 5, 8, 9, 10, 11}) {  // s + 1 = 4 or 5: one slab, two, odd counts
         const auto boxes = mac_boxes({8, 6, cz}, {0.8, 0.6, 0.1 * cz}, {true, true, !walls});
-        Interaction ib(boxes, kernel);
+        Interaction ib(boxes, kernel_named(kernel));
         const size_t n = 200;
         std::mt19937_64 rng(cz);
         std::uniform_real_distribution<double> U01(0.0, 1.0);
@@ -488,7 +488,7 @@ TEST(IbInteraction, BinnedSlabsForFewPlanes) {
 // for two different fields through one sort; an empty set gives zero.
 TEST(IbInteraction, PointsSortedOnceServeEveryCallAtThemBitForBit) {
   const auto boxes = mac_boxes({8, 6, 10}, {0.8, 0.6, 1.0}, {true, false, true});
-  Interaction ib(boxes, "bspline3");
+  Interaction ib(boxes, Kernel::bspline3);
   const size_t n = 300;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> U01(0.0, 1.0);

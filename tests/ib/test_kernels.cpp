@@ -46,12 +46,12 @@ void for_offsets(F f) {
 
 TEST(IbKernels, NamesAndSupports) {
   EXPECT_EQ(kernel_names().size(), 4u);
-  EXPECT_EQ(kernel_support("roma3"), 3);
-  EXPECT_EQ(kernel_support("bspline3"), 4);
-  EXPECT_EQ(kernel_support("cosine4"), 4);
-  EXPECT_EQ(kernel_support("peskin4"), 4);
+  EXPECT_EQ(kernel_support(Kernel::roma3), 3);
+  EXPECT_EQ(kernel_support(Kernel::bspline3), 4);
+  EXPECT_EQ(kernel_support(Kernel::cosine4), 4);
+  EXPECT_EQ(kernel_support(Kernel::peskin4), 4);
   try {
-    kernel_support("gaussian");
+    kernel_named("gaussian");
     FAIL() << "an unknown kernel name must throw";
   } catch (const InputError& e) {
     EXPECT_EQ(e.field(), "kernel");

@@ -101,7 +101,7 @@ TEST(Scene, TheValuesArriveInCgs) {
   EXPECT_NEAR(s.fluid_options.dt, 1e-7, 1e-22);
   EXPECT_TRUE(s.ib.adaptive.enabled);
   EXPECT_EQ(s.ib.adaptive.grow_after, 16);
-  EXPECT_EQ(s.ib.kernel, "roma3");
+  EXPECT_EQ(s.ib.kernel, ib::Kernel::roma3);
   EXPECT_NEAR(s.ib.body_force[0], 8e3, 1e-9);
   ASSERT_EQ(s.types.size(), 1u);
   EXPECT_TRUE(s.types[0].spec.model.H0_reference);

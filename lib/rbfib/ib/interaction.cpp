@@ -62,19 +62,40 @@ std::vector<Spreading> all_spreadings() {
   return {Spreading::serial, Spreading::sort_reduce, Spreading::preallocated, Spreading::on_the_fly, Spreading::binned};
 }
 
+const char* to_string(Kernel k) {
+  switch (k) {
+    case Kernel::roma3: return Roma3::name;
+    case Kernel::bspline3: return BSpline3::name;
+    case Kernel::cosine4: return Cosine4::name;
+    case Kernel::peskin4: return Peskin4::name;
+  }
+  return "unknown";
+}
+
+std::vector<Kernel> all_kernels() { return {Kernel::roma3, Kernel::bspline3, Kernel::cosine4, Kernel::peskin4}; }
+
 std::vector<std::string> kernel_names() {
   std::vector<std::string> names;
-  [&]<class... K>(KernelList<K...>) { (names.push_back(K::name), ...); }(Kernels{});
+  for (Kernel k : all_kernels()) names.push_back(to_string(k));
   return names;
 }
 
-int kernel_support(const std::string& name) {
+Kernel kernel_named(const std::string& name, const std::string& field) {
+  std::string all;
+  for (Kernel k : all_kernels()) {
+    if (name == to_string(k)) return k;
+    all += std::string(all.empty() ? "" : ", ") + to_string(k);
+  }
+  throw InputError(field, name, "is not a known IB kernel (one of: " + all + ")");
+}
+
+int kernel_support(Kernel kernel) {
   int s = 0;
-  with_kernel(name, [&](auto k) { s = decltype(k)::support; });
+  with_kernel(kernel, [&](auto k) { s = decltype(k)::support; });
   return s;
 }
 
-Interaction::Interaction(const std::array<Box, 3>& components, const std::string& kernel)
+Interaction::Interaction(const std::array<Box, 3>& components, Kernel kernel)
     : kernel_(kernel), support_(kernel_support(kernel)) {
   static const char* axis_names[3] = {"x", "y", "z"};
   for (int c = 0; c < 3; ++c) grids_[c] = make_component_grid(components[c], support_);

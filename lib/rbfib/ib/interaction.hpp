@@ -33,6 +33,7 @@
 #include "rbfib/core/exec.hpp"
 #include "rbfib/grid/box.hpp"
 #include "rbfib/ib/grid.hpp"
+#include "rbfib/ib/kernels.hpp"
 
 #include <array>
 #include <string>
@@ -77,10 +78,10 @@ class SortedPoints {
 class Interaction {
  public:
   /// components: the three component boxes (e.g. mac_boxes(...)), sharing cells, lengths, origins
-  /// and boundary kinds per axis. kernel: a name from kernel_names().
-  Interaction(const std::array<Box, 3>& components, const std::string& kernel);
+  /// and boundary kinds per axis.
+  Interaction(const std::array<Box, 3>& components, Kernel kernel);
 
-  const std::string& kernel() const { return kernel_; }
+  Kernel kernel() const { return kernel_; }
   int support() const { return support_; }
   const ComponentGrid& grid(int c) const { return grids_[c]; }
   /// h^3 of the cells (the grid's volume element).
@@ -124,7 +125,7 @@ class Interaction {
   template <class K>
   void spread_sorted(const SortedPoints& s, const double* F, std::array<dvec, 3>& f, bool add);
 
-  std::string kernel_;
+  Kernel kernel_;
   int support_ = 0;
   std::array<ComponentGrid, 3> grids_;
   dvec buffer_;  // Alg. 4.5: buffer_width vectors of the largest component, zero between calls

@@ -35,11 +35,18 @@ RBFIB_HD inline void axis_weights(double delta, double* w) {
   }
 }
 
+/// The kernels by name: the choice a scene (ib.kernel) or a study makes, in the order of `Kernels`.
+enum class Kernel { roma3, bspline3, cosine4, peskin4 };
+/// The kernel's name ("roma3", ...), as scenes write it.
+const char* to_string(Kernel k);
+/// The kernel of a name; throws InputError naming `field` and listing the names otherwise.
+Kernel kernel_named(const std::string& name, const std::string& field = "kernel");
+std::vector<Kernel> all_kernels();
 /// Names of all kernels, in the order of `Kernels`.
 std::vector<std::string> kernel_names();
 
-/// Support width s of the kernel called `name`; InputError("kernel", name) if unknown.
-int kernel_support(const std::string& name);
+/// Support width s of the kernel.
+int kernel_support(Kernel k);
 
 /// Calls f(K{}) for the kernel type K whose name is `name`; InputError("kernel", name) if none.
 template <class F, class... K>
@@ -53,9 +60,10 @@ void with_kernel(const std::string& name, F&& f, KernelList<K...>) {
   }
 }
 
+/// Calls f(K{}) with the kernel type K of k.
 template <class F>
-void with_kernel(const std::string& name, F&& f) {
-  with_kernel(name, static_cast<F&&>(f), Kernels{});
+void with_kernel(Kernel k, F&& f) {
+  with_kernel(std::string(to_string(k)), static_cast<F&&>(f), Kernels{});
 }
 
 }  // namespace rbfib::ib

@@ -255,11 +255,11 @@ void read_time(const Fields& f, Scene& s) {
 
 void read_ib(const Fields& f, Scene& s) {
   const std::vector<std::string> kernels = ib::kernel_names();
-  s.ib.kernel = f.choice("kernel", kernels);
+  s.ib.kernel = ib::kernel_named(f.choice("kernel", kernels), f.at("kernel"));
   const int support = ib::kernel_support(s.ib.kernel);
   for (int d = 0; d < 3; ++d)
     if (s.grid.cells[d] < support + 1)
-      throw InputError(f.at("kernel"), s.ib.kernel,
+      throw InputError(f.at("kernel"), ib::to_string(s.ib.kernel),
                        "spans " + to_text(support) + " cells, more than the grid's " + to_text(s.grid.cells[d]) + " along " +
                            axis_name[d] + " allow (at least support + 1)");
   if (f.has("body_force")) s.ib.body_force = f.triple("body_force", "dyn/cm^3");
@@ -687,7 +687,7 @@ std::string describe(const Scene& s) {
   if (s.ib.adaptive.enabled)
     o << "; adaptive: dt = 2^k x " << s.ib.adaptive.dt_min / units::ns << " ns, k <= " << s.ib.adaptive.max_level << ", growing after "
       << s.ib.adaptive.grow_after << " steps";
-  o << "\n  kernel " << s.ib.kernel << "; body force [" << s.ib.body_force[0] << ", " << s.ib.body_force[1] << ", "
+  o << "\n  kernel " << ib::to_string(s.ib.kernel) << "; body force [" << s.ib.body_force[0] << ", " << s.ib.body_force[1] << ", "
     << s.ib.body_force[2] << "] dyn/cm^3\n";
   for (const CellTypeEntry& t : s.types) {
     const auto n = std::count_if(s.cells.begin(), s.cells.end(), [&](const CellEntry& c) { return c.type == t.spec.name; });

@@ -64,7 +64,7 @@ struct AdaptiveStep {
 
 struct IbOptions {
   Coupling coupling = Coupling::seed;
-  std::string kernel = "bspline3";  ///< a name from ib::kernel_names()
+  ib::Kernel kernel = ib::Kernel::bspline3;
   /// How forces are spread (Algs. 4.2-4.6; binned: points sorted once per step, added in place).
   /// Interpolation always uses the sorted points (the binned algorithm).
   ib::Spreading spreading = ib::Spreading::binned;
