@@ -38,15 +38,6 @@ using namespace rbfib;
 
 namespace {
 
-/// The shear rate between the walls at t = 0 (1/s): the largest wall-velocity difference over the gap.
-double shear_rate(const scene::Scene& s) {
-  double g = 0;
-  for (int d = 0; d < 3; ++d)
-    if (!s.grid.periodic(d))
-      for (int a = 0; a < 3; ++a) g = std::max(g, std::abs(s.walls[d][1].at(0)[a] - s.walls[d][0].at(0)[a]) / s.grid.length[d]);
-  return g;
-}
-
 /// A rough estimate of what a scene needs (bytes): about 40 grid vectors for the fluid, the
 /// operators of each cell type (six blocks of n_s (+ n_d with bending) x n_d).
 struct Memory {
@@ -122,25 +113,13 @@ void print_check(const scene::Scene& s) {
   std::cout << "contacts: no cell overlaps another cell, a wall or a point set; "
             << (near.empty() ? "every pair is at least 2h apart\n" : "closer than 2h:\n");
   for (const std::string& line : near) std::cout << "  " << line << "\n";
-  const double rho = s.fluid.density, mu = s.fluid.viscosity, gdot = shear_rate(s);
+  const double rho = s.fluid.density, gdot = scene::shear_rate(s);
   const double h = std::min({s.grid.h(0), s.grid.h(1), s.grid.h(2)}), dt = s.fluid_options.dt;
   std::cout << "dimensionless groups (shear rate " << gdot << " 1/s between the walls):\n";
-  for (const scene::CellTypeEntry& t : s.types) {
-    // The cell's size: the largest distance of its reference surface from its centre.
-    double R = 0;
-    for (index_t i = 0; i < t.spec.data_sites.size(); ++i) {
-      double x[3];
-      t.spec.shape.position(t.spec.data_sites.lambda[i], t.spec.data_sites.theta[i], x);
-      R = std::max(R, std::hypot(x[0], x[1], x[2]));
-    }
-    std::cout << "  '" << t.spec.name << "': radius " << R / units::um << " um, Reynolds rho gdot R^2 / mu = " << rho * gdot * R * R / mu;
-    // The capillary number from the first energy that resists shear (a tension law does not).
-    for (const mechanics::EnergyDensity& e : t.spec.model.elastic)
-      if (e.shear_modulus() > 0) {
-        std::cout << ", capillary mu gdot R / G_s (G_s = " << e.shear_modulus() << " dyn/cm, the " << e.name()
-                  << " shear modulus " << e.parameters()[0].name << ") = " << mu * gdot * R / e.shear_modulus();
-        break;
-      }
+  for (const scene::CellTypeGroups& g : scene::dimensionless_groups(s)) {
+    std::cout << "  '" << g.type << "': radius " << g.radius / units::um << " um, Reynolds rho gdot R^2 / mu = " << g.reynolds;
+    if (g.shear_modulus > 0)
+      std::cout << ", capillary mu gdot R / G_s (G_s = " << g.shear_modulus << " dyn/cm, the " << g.modulus << ") = " << g.capillary;
     std::cout << "\n";
   }
   // Eq. 5.4: dt <= (1/4) sqrt(h rho / ||f||_inf), i.e. ||f||_inf <= h rho / (16 dt^2).

@@ -361,3 +361,22 @@ TEST(Contacts, ACellAroundTetheredPointsIsRefused) {
 
 }  // namespace
 }  // namespace rbfib::scene
+
+namespace rbfib::scene {
+namespace {
+
+TEST(Scene, DimensionlessGroupsComeFromTheWallsTheFluidAndTheFirstShearModulus) {
+  // 12 mm/s over 12 um: 1000/s; viscosity 0.1 cP; the platelet's neo-Hookean E = 0.1 dyn/cm.
+  const Scene s = parse_scene(channel_scene, "channel");
+  EXPECT_NEAR(shear_rate(s), 1000.0, 1e-9);
+  const std::vector<CellTypeGroups> g = dimensionless_groups(s);
+  ASSERT_EQ(g.size(), 1u);
+  EXPECT_GT(g[0].radius, 0.5 * units::um);
+  EXPECT_NEAR(g[0].reynolds, 1.0 * 1000.0 * g[0].radius * g[0].radius / 1e-3, 1e-12);
+  EXPECT_EQ(g[0].shear_modulus, 0.1);
+  EXPECT_NEAR(g[0].capillary, 1e-3 * 1000.0 * g[0].radius / 0.1, 1e-15);
+  EXPECT_NE(g[0].modulus.find("E"), std::string::npos) << g[0].modulus;
+}
+
+}  // namespace
+}  // namespace rbfib::scene

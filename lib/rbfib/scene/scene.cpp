@@ -657,6 +657,38 @@ sim::ImmersedBoundary build(const Scene& s, bool check_placements) {
   return ib;
 }
 
+double shear_rate(const Scene& s) {
+  double g = 0;
+  for (int d = 0; d < 3; ++d)
+    if (!s.grid.periodic(d))
+      for (int a = 0; a < 3; ++a) g = std::max(g, std::abs(s.walls[d][1].at(0)[a] - s.walls[d][0].at(0)[a]) / s.grid.length[d]);
+  return g;
+}
+
+std::vector<CellTypeGroups> dimensionless_groups(const Scene& s) {
+  const double rho = s.fluid.density, mu = s.fluid.viscosity, gdot = shear_rate(s);
+  std::vector<CellTypeGroups> out;
+  for (const CellTypeEntry& t : s.types) {
+    CellTypeGroups g;
+    g.type = t.spec.name;
+    for (index_t i = 0; i < t.spec.data_sites.size(); ++i) {
+      double x[3];
+      t.spec.shape.position(t.spec.data_sites.lambda[i], t.spec.data_sites.theta[i], x);
+      g.radius = std::max(g.radius, std::hypot(x[0], x[1], x[2]));
+    }
+    g.reynolds = rho * gdot * g.radius * g.radius / mu;
+    for (const mechanics::EnergyDensity& e : t.spec.model.elastic)  // the first law that resists shear
+      if (e.shear_modulus() > 0) {
+        g.shear_modulus = e.shear_modulus();
+        g.modulus = e.name() + " " + e.parameters()[0].name;
+        g.capillary = mu * gdot * g.radius / g.shear_modulus;
+        break;
+      }
+    out.push_back(g);
+  }
+  return out;
+}
+
 std::string describe(const Scene& s) {
   std::ostringstream o;
   const MacGrid& g = s.grid;

@@ -94,6 +94,22 @@ std::vector<std::string> check_contacts(const Scene& scene);
 /// continued from another run's state with cells added, as the platelets of Sec. 5.2.1).
 sim::ImmersedBoundary build(const Scene& scene, bool check_placements = true);
 
+/// The shear rate between the walls at t = 0 (1/s): the largest wall-velocity difference over the
+/// gap (0 without moving walls).
+double shear_rate(const Scene& scene);
+
+/// The dimensionless groups of one cell type in the scene's flow.
+struct CellTypeGroups {
+  std::string type;
+  double radius = 0;         ///< the largest distance of the reference surface from its centre (cm)
+  double reynolds = 0;       ///< rho gdot R^2 / mu
+  double shear_modulus = 0;  ///< G_s of the first energy that resists shear (dyn/cm); 0: none does
+  std::string modulus;       ///< which: e.g. "Skalak E"
+  double capillary = NAN;    ///< mu gdot R / G_s (NaN without a shear modulus)
+};
+/// Reynolds and capillary numbers per cell type at the shear rate between the walls.
+std::vector<CellTypeGroups> dimensionless_groups(const Scene& scene);
+
 /// A multi-line summary with units: the box, grid, flow, step, kernel, types, cells, point sets.
 std::string describe(const Scene& scene);
 
