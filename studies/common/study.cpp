@@ -121,7 +121,9 @@ void record_run(Json& results, const std::string& id, const RunProgress& p) {
   r["finished"] = p.finished;
   r["progress"] = p.t_end > 0 ? std::min(1.0, p.t / p.t_end) : (p.finished ? 1.0 : 0.0);
   char simulated[64];
-  std::snprintf(simulated, sizeof simulated, "%.4g of %.4g ms", p.t / units::ms, p.t_end / units::ms);
+  const bool in_ms = p.t_end >= units::ms;  // the unit that suits the run's end
+  const double unit = in_ms ? units::ms : units::us;
+  std::snprintf(simulated, sizeof simulated, "%.4g of %.4g %s", p.t / unit, p.t_end / unit, in_ms ? "ms" : "us");
   r["simulated"] = simulated;
   r["steps"] = p.steps;
   r["seconds_per_step"] = std::isfinite(p.seconds_per_step) ? Json(p.seconds_per_step) : Json();
