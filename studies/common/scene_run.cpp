@@ -5,6 +5,7 @@
 #include "rbfib/run/run.hpp"
 #include "rbfib/scene/scene.hpp"
 
+#include <algorithm>
 #include <fstream>
 
 namespace rbfib::study {
@@ -18,7 +19,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   std::ofstream(opt.out_dir + "/scene_" + tag + ".yaml") << text;
   run::Options o;
   o.t_end = scene::parse_scene(text, "scene_" + tag + ".yaml").t_end;
-  o.sitting = resumable ? max_seconds : INFINITY;
+  o.sitting = resumable ? std::max(0.0, max_seconds) : INFINITY;  // a spent sitting takes no step
   if (resumable) o.checkpoint = opt.out_dir + "/checkpoint_" + tag + ".h5";
   o.sample_every = {every, 0, 0};
   run::Hooks h;

@@ -121,6 +121,18 @@ class BadInput(unittest.TestCase):
     def test_bad_scale(self):
         self.assert_one_line_error(harness("run", "appendixA", "--scale", "huge"), "--scale", "huge")
 
+    def test_bad_sitting(self):
+        # The harness refuses it before running anything; a driver refuses it on its own command line.
+        self.assert_one_line_error(harness("run", "appendixA", "--sitting", "-5"), "--sitting", "-5")
+        driver = os.path.join(BUILD, "studies", "study_appendixA")
+        if not os.path.isfile(driver):
+            self.skipTest("drivers not built")
+        for bad in ("0", "ten", "5s"):
+            with tempfile.TemporaryDirectory() as out:
+                r = subprocess.run([driver, "--sitting", bad, "--out", out], capture_output=True, text=True)
+            self.assertEqual(r.returncode, 2, r.stdout + r.stderr)
+            self.assert_one_line_error(r, "--sitting", bad)
+
     def test_missing_and_malformed_reference(self):
         tmp = tempfile.mkdtemp()
         try:
