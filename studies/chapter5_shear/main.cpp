@@ -166,16 +166,9 @@ Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, i
   r.t_end = t_end;
   const long total = std::lround(t_end / dt), snapshot_step = t_snapshot > 0 ? std::lround(t_snapshot / dt) : -1;
   long material = 0;
-  // Outlines (Fig. 5.2) at the start, 1/3, 2/3 and the end, and the snapshot, kept
-  // in files as they are taken so that a continued run has them all.
-  auto outline_file = [&](int k) { return opt.out_dir + "/outline_" + tag + "_" + std::to_string(k) + ".txt"; };
-  const std::string snapshot_file = opt.out_dir + "/snapshot_" + tag + ".txt";
-  auto write_sites = [](const std::string& path, const sim::ImmersedBoundary& ib) {
-    std::ofstream f(path);
-    f.precision(17);
-    f << ib.time() << '\n';
-    for (double x : ib.batch(0).positions_host()) f << x << '\n';
-  };
+  // Outlines (Fig. 5.2) at the start, 1/3, 2/3 and the end, and the snapshot, kept as series of
+  // the run (in its checkpoint) as they are taken, so that a continued run has them all:
+  // "outline_<k>" rows [t] then [z, y] per data site; "snapshot" rows [t] then the data sites.
   st::SceneRunHooks hooks;
   hooks.at_start = [&](const sim::ImmersedBoundary& ib) {
     // The tracked material point: the data site on the rim in the shear plane, farthest along
@@ -193,38 +186,35 @@ Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, i
   hooks.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport* rep) {
     return to_row(sample(ib, material, rep ? rep->max_force_density : 0));
   };
-  hooks.after_step = [&](const sim::ImmersedBoundary& ib) {
+  hooks.record = [&](const sim::ImmersedBoundary& ib, run::SeriesSet& series) {
     const long step = ib.step_count();
-    if (step == 0) {  // a fresh start: nothing of an earlier run may remain
-      for (int k = 1; k < 4; ++k) std::filesystem::remove(outline_file(k));
-      std::filesystem::remove(snapshot_file);
+    if (step == snapshot_step) {
+      run::Series& snap = series["snapshot"];
+      snap.rows = {{ib.time()}, ib.batch(0).positions_host()};
     }
-    if (step == snapshot_step) write_sites(snapshot_file, ib);
     for (int k = 0; k < 4; ++k)
       if (step == total * k / 3) {
         const std::vector<double> X = ib.batch(0).positions_host();
         const long n = ib.batch(0).type().n_data();
         const st::CellShape sh = st::cell_shape(X, n, 1, 0);
-        std::ofstream f(outline_file(k));
-        f.precision(17);
-        f << ib.time() << '\n';
-        for (long i = 0; i < n; ++i) f << X[std::size_t(2 * n + i)] - sh.center[2] << ' ' << X[std::size_t(n + i)] - sh.center[1] << '\n';
+        run::Series& o = series["outline_" + std::to_string(k)];
+        o.rows = {{ib.time()}};
+        for (long i = 0; i < n; ++i) o.rows.push_back({X[std::size_t(2 * n + i)] - sh.center[2], X[std::size_t(n + i)] - sh.center[1]});
       }
   };
   r.run = st::run_scene(scene_text(s, rate, mu, dt, t_end), tag, every, resumable, opt, hooks, max_seconds);
   for (const std::vector<double>& row : r.run.samples) r.samples.push_back(from_row(row));
   for (int k = 0; k < 4; ++k) {
-    std::ifstream f(outline_file(k));
+    const auto it = r.run.series.find("outline_" + std::to_string(k));
+    if (it == r.run.series.end() || it->second.rows.empty()) continue;
     Run::Outline o;
-    if (!(f >> o.t)) continue;
-    for (double z, y; f >> z >> y;) o.z.push_back(z), o.y.push_back(y);
+    o.t = it->second.rows[0].at(0);
+    for (std::size_t i = 1; i < it->second.rows.size(); ++i) o.z.push_back(it->second.rows[i].at(0)), o.y.push_back(it->second.rows[i].at(1));
     r.outlines.push_back(std::move(o));
   }
-  if (std::ifstream f(snapshot_file); f && snapshot_step >= 0 && r.run.steps >= snapshot_step) {
-    double t = 0;
-    f >> t;
-    for (double x; f >> x;) r.snapshot.push_back(x);
-  }
+  if (const auto it = r.run.series.find("snapshot"); it != r.run.series.end() && it->second.rows.size() == 2 && snapshot_step >= 0 &&
+                                                     r.run.steps >= snapshot_step)
+    r.snapshot = it->second.rows[1];
   r.seconds = r.run.seconds;  // over all sittings: the checkpoint keeps them
   r.steps_timed = r.run.steps_timed;
   return r;

@@ -25,7 +25,11 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   run::Hooks h;
   h.built = hooks.at_start;
   h.prepare = hooks.prepare;
-  if (hooks.after_step) h.after_step = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport*, run::SeriesSet&) { hooks.after_step(ib); };
+  if (hooks.after_step || hooks.record)
+    h.after_step = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport*, run::SeriesSet& series) {
+      if (hooks.after_step) hooks.after_step(ib);
+      if (hooks.record) hooks.record(ib, series);
+    };
   h.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport* report, run::SeriesSet& series) {
     series["samples"].rows.push_back(hooks.sample(ib, report));
   };
@@ -35,6 +39,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   const run::Progress p = run.evolve();
   SceneRun r;
   r.samples = run.series("samples").rows;
+  r.series = run.series();
   r.steps = p.steps;
   r.steps_timed = p.steps_timed;
   r.seconds = p.wall_seconds;

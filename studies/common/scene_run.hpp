@@ -8,6 +8,7 @@
 // scene text; a run stopped by a numerical failure keeps its last good state and the stop, and is
 // not stepped again.
 #include "common/study.hpp"
+#include "rbfib/run/run.hpp"
 #include "rbfib/sim/ib_step.hpp"
 
 #include <cmath>
@@ -29,10 +30,14 @@ struct SceneRunHooks {
   std::function<std::vector<double>(const sim::ImmersedBoundary&, const sim::IbStepReport* report)> sample;
   /// Called after every step (and once at the start of a fresh run).
   std::function<void(const sim::ImmersedBoundary&)> after_step;
+  /// Called after every step (and once at the start of a fresh run) with the run's series, to keep
+  /// a moment of the run (an outline, a snapshot) in the checkpoint beside the samples.
+  std::function<void(const sim::ImmersedBoundary&, run::SeriesSet&)> record;
 };
 
 struct SceneRun {
   std::vector<std::vector<double>> samples;  ///< rows from hooks.sample, the first at t = 0
+  run::SeriesSet series;                     ///< every series of the run (samples and those hooks.record keeps)
   std::vector<std::vector<double>> final_positions;  ///< each batch's data sites at the end (cm)
   std::vector<dvec> final_points;                    ///< each tethered point set's positions at the end (cm)
   long steps = 0;        ///< steps from t = 0 to the end (or to the failure)
