@@ -284,9 +284,9 @@ double min_gap(const Sites& s) {
   std::vector<double> cell[2];
   for (int c = 0; c < 2; ++c)
     for (int d = 0; d < 3; ++d) cell[c].insert(cell[c].end(), s.P.begin() + (2 * d + c) * n, s.P.begin() + (2 * d + c + 1) * n);
-  const auto& g = s.diag.centroid;
-  const std::array<double, 3> shift{wrap(g[1][0] - g[0][0]) - (g[1][0] - g[0][0]), 0, wrap(g[1][2] - g[0][2]) - (g[1][2] - g[0][2])};
-  return surface::closest_points(cell[0], n, cell[1], n, shift).distance;
+  // The image nearest by the cells' volume centroids (x and z periodic).
+  const surface::PeriodicBox box{{kBox, kBox, kBox}, {true, false, true}};
+  return surface::closest_points(cell[0], n, cell[1], n, surface::nearest_image_shift(s.diag.centroid[0], s.diag.centroid[1], box)).distance;
 }
 
 Sample measure(const sim::ImmersedBoundary& ib, const Sites& s) {

@@ -130,7 +130,7 @@ double cell_distance(const std::vector<double>& A, index_t na, const std::vector
     ra = std::max(ra, std::hypot(A[std::size_t(i)] - ca[0], A[std::size_t(na + i)] - ca[1], A[std::size_t(2 * na + i)] - ca[2]));
   for (index_t i = 0; i < nb; ++i)
     rb = std::max(rb, std::hypot(B[std::size_t(i)] - cb[0], B[std::size_t(nb + i)] - cb[1], B[std::size_t(2 * nb + i)] - cb[2]));
-  const std::array<double, 3> shift{box.Lx * std::round((ca[0] - cb[0]) / box.Lx), 0, box.Lz * std::round((ca[2] - cb[2]) / box.Lz)};
+  const std::array<double, 3> shift = surface::nearest_image_shift(ca, cb, {{box.Lx, 0, box.Lz}, {true, false, true}});
   const double centres = std::hypot(ca[0] - cb[0] - shift[0], ca[1] - cb[1], ca[2] - cb[2] - shift[2]);
   if (centres - ra - rb > cutoff) return centres - ra - rb;  // a lower bound, enough to tell far cells
   return surface::closest_points(A, na, B, nb, shift).distance;

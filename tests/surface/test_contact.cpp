@@ -30,5 +30,18 @@ TEST(Contact, WindingNumberIsOneInsideAndZeroOutside) {
   EXPECT_GT(X[std::size_t(c.a)], 1.9);
 }
 
+TEST(Contact, ThePeriodicClosestDistanceUsesTheNearestImage) {
+  // Two points 9 apart along x in a box 10 long, periodic in x only: 1 apart through the boundary;
+  // along y (walls) the distance is the plain one.
+  const PeriodicBox box{{10, 10, 10}, {true, false, true}};
+  const std::array<double, 3> s = nearest_image_shift({0.5, 1, 1}, {9.5, 1, 1}, box);
+  EXPECT_EQ(s[0], -10.0);
+  EXPECT_EQ(s[1], 0.0);
+  EXPECT_EQ(s[2], 0.0);
+  EXPECT_EQ(nearest_image_shift({1, 0.5, 1}, {1, 9.5, 1}, box)[1], 0.0);  // y is not periodic
+  const std::vector<double> A{0.5, 1, 1}, B{9.5, 1, 1};  // one point each, X[d n + i]
+  EXPECT_NEAR(closest_points(A, 1, B, 1, nearest_image_shift({0.5, 1, 1}, {9.5, 1, 1}, box)).distance, 1.0, 1e-14);
+}
+
 }  // namespace
 }  // namespace rbfib::surface

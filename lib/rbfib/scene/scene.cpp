@@ -547,13 +547,7 @@ std::vector<std::string> check_contacts(const Scene& s) {
     }
     cells.push_back(std::move(p));
   }
-  // The shift of b that brings its centre nearest a's (periodic axes).
-  auto nearest_image = [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    std::array<double, 3> shift{0, 0, 0};
-    for (int d = 0; d < 3; ++d)
-      if (g.periodic(d)) shift[d] = g.length[d] * std::round((a[d] - b[d]) / g.length[d]);
-    return shift;
-  };
+  const surface::PeriodicBox box{g.length, {g.periodic(0), g.periodic(1), g.periodic(2)}};
   // Inside c: within its bounding sphere, and a winding number above 1/2.
   auto inside = [](const Placed& c, const std::array<double, 3>& x) {
     double r2 = 0;
@@ -565,7 +559,7 @@ std::vector<std::string> check_contacts(const Scene& s) {
   for (std::size_t a = 0; a < cells.size(); ++a)
     for (std::size_t b = a + 1; b < cells.size(); ++b) {
       const Placed &A = cells[a], &B = cells[b];
-      const std::array<double, 3> shift = nearest_image(A.center, B.center);
+      const std::array<double, 3> shift = surface::nearest_image_shift(A.center, B.center, box);
       double dc = 0;
       for (int d = 0; d < 3; ++d) dc += std::pow(A.center[d] - B.center[d] - shift[d], 2);
       if (std::sqrt(dc) > A.radius + B.radius + 2 * hmin) continue;
@@ -599,7 +593,7 @@ std::vector<std::string> check_contacts(const Scene& s) {
       double closest = INFINITY;
       for (index_t i = 0; i < n; ++i) {
         std::array<double, 3> x{X[std::size_t(i)], X[std::size_t(n + i)], X[std::size_t(2 * n + i)]};
-        const std::array<double, 3> shift = nearest_image(C.center, x);
+        const std::array<double, 3> shift = surface::nearest_image_shift(C.center, x, box);
         double r2 = 0;
         for (int d = 0; d < 3; ++d) x[d] += shift[d], r2 += std::pow(x[d] - C.center[d], 2);
         if (std::sqrt(r2) > C.radius + 2 * hmin) continue;

@@ -40,4 +40,11 @@ Closest closest_points(const std::vector<double>& A, index_t na, const std::vect
   return c;
 }
 
+std::array<double, 3> nearest_image_shift(const std::array<double, 3>& a, const std::array<double, 3>& b, const PeriodicBox& box) {
+  std::array<double, 3> shift{0, 0, 0};
+  for (int d = 0; d < 3; ++d)
+    if (box.periodic[d]) shift[d] = box.length[d] * std::round((a[d] - b[d]) / box.length[d]);
+  return shift;
+}
+
 }  // namespace rbfib::surface

@@ -26,4 +26,14 @@ struct Closest {
 Closest closest_points(const std::vector<double>& A, index_t na, const std::vector<double>& B, index_t nb,
                        const std::array<double, 3>& shift = {0, 0, 0});
 
+/// A box's periodicity: its lengths (cm) and which axes are periodic.
+struct PeriodicBox {
+  std::array<double, 3> length{0, 0, 0};
+  std::array<bool, 3> periodic{false, false, false};
+};
+
+/// The shift of b, a whole number of box lengths along each periodic axis, that brings b nearest a:
+/// L round((a - b) / L) per periodic axis, 0 on the others.
+std::array<double, 3> nearest_image_shift(const std::array<double, 3>& a, const std::array<double, 3>& b, const PeriodicBox& box);
+
 }  // namespace rbfib::surface
