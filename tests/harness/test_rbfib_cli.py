@@ -115,6 +115,25 @@ class Restart(unittest.TestCase):
             self.assertEqual(self.physics(a), self.physics(b))
             self.assertEqual(len(self.physics(a)), 1 + 10)
 
+    def test_a_finished_run_is_not_stepped_again(self):
+        # The checkpoint of a run that reached its end is marked finished: restart says so and
+        # takes no step; the table keeps its rows.
+        with open(os.path.join(ROOT, "scenes", "relaxing_sphere.yaml")) as f:
+            text = f.read().replace("end: 40 us", "end: 2 us")
+        with tempfile.TemporaryDirectory() as d:
+            scene = os.path.join(d, "scene.yaml")
+            with open(scene, "w") as f:
+                f.write(text)
+            out = os.path.join(d, "out")
+            self.assertEqual(rbfib("run", scene, "--out", out, timeout=300).returncode, 0)
+            rows = self.physics(out)
+            r = rbfib("restart", out, timeout=300)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            self.assertIn("done: 0 steps", r.stdout)
+            self.assertIn("finished", r.stdout)
+            self.assertEqual(self.physics(out), rows)
+            self.assertEqual(len(rows), 1 + 5)
+
     def test_two_runs_of_one_scene_are_bitwise_identical(self):
         # Two processes, one scene on a 48^3 grid: the checkpoints hold the same bits. (FFT plans
         # chosen by timing, FFTW_MEASURE, made two runs differ in the last bits on such grids.)
