@@ -159,10 +159,9 @@ std::string csv_line(const std::vector<double>& row) {
 /// Steps the scene from its start or its checkpoint (DIR/checkpoint.h5) to min(until, its end):
 /// the run loop (run/run.hpp) with the scene's cadences; DIR/diagnostics.csv is the series
 /// "diagnostics" (kept in the checkpoint), rewritten from it when a run continues.
-int advance(const std::string& text, const std::string& origin, const std::string& out, double until) {
+int advance(const scene::Scene& s, const std::string& out, double until) {
   const bool terminal = isatty(STDOUT_FILENO);
   const std::string checkpoint = out + "/checkpoint.h5", csv_path = out + "/diagnostics.csv";
-  const scene::Scene s = scene::parse_scene(text, origin);
   run::Options o;
   o.t_end = s.t_end;
   o.until = until > 0 ? until : s.t_end;
@@ -196,7 +195,7 @@ int advance(const std::string& text, const std::string& origin, const std::strin
     std::cout << (terminal ? "\r" : "") << p.describe() << (terminal ? "" : "\n") << std::flush;
   };
   std::cout << scene::describe(s) << "building the cell types and the solver ..." << std::endl;
-  run::Run run(text, origin, o, h);
+  run::Run run(s, o, h);
   // The table as the run has it: its header and every row the checkpoint kept.
   csv.open(csv_path, std::ios::trunc);
   const std::vector<std::string> columns = csv_columns(run.ib());
@@ -228,12 +227,12 @@ int run_scene(const scene::Scene& s, const std::string& out, double until) {
   std::filesystem::create_directories(out);
   std::ofstream(out + "/scene.yaml") << s.source;
   std::filesystem::remove(out + "/checkpoint.h5");  // a run starts afresh; `restart` continues
-  return advance(s.source, s.name, out, until > 0 ? std::min(until, s.t_end) : s.t_end);
+  return advance(s, out, until > 0 ? std::min(until, s.t_end) : s.t_end);
 }
 
 int restart(const std::string& out, double until) {
   const io::Checkpoint k = io::read_checkpoint(out + "/checkpoint.h5");
-  return advance(k.scene_yaml, out + "/checkpoint.h5", out, until);
+  return advance(scene::parse_scene(k.scene_yaml, out + "/checkpoint.h5"), out, until);
 }
 
 }  // namespace

@@ -48,7 +48,6 @@
 #include "rbfib/surface/triangulation.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -68,43 +67,11 @@ namespace {
 Json::Array row(std::initializer_list<Json> xs) { return Json::Array(xs); }
 Json num(double x) { return std::isfinite(x) ? Json(x) : Json(); }
 
-using clock_type = std::chrono::steady_clock;
-double since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
 
-/// The site of `sites` with the largest x on the unit sphere. The ellipsoid of eq. (88) stretches
-/// the sphere's x by a > 0, so this is the rightmost evaluation site at t = 0: the paper's d_max
-/// point ("the point with largest x coordinate", Sec. 4.2).
-index_t rightmost_site(const surface::SphereSites& sites) {
-  index_t best = 0;
-  for (index_t i = 1; i < sites.size(); ++i)
-    if (std::cos(sites.theta[i]) * std::cos(sites.lambda[i]) > std::cos(sites.theta[best]) * std::cos(sites.lambda[best]))
-      best = i;
-  return best;
-}
 /// The angle of that site from the x axis (rad).
 double rightmost_offset(const surface::SphereSites& sites) {
   const index_t i = rightmost_site(sites);
   return std::acos(std::min(1.0, std::cos(sites.theta[i]) * std::cos(sites.lambda[i])));
-}
-
-/// A Bauer spiral of even size n, which has no site on the x axis (its rightmost site lies
-/// sqrt(pi / n) from it), with the weights of dissertation eq. (2.22), phi = r^3, as
-/// chapter3::make_evaluation_set builds the odd ones. axis_site is set to the rightmost site: the
-/// LDSM run (chapter3::Relaxation) measures its d_max at eval.axis_site when there is one.
-EvaluationSet even_spiral_set(index_t n) {
-  require(n >= 4 && n % 2 == 0, "even spiral size n", n, "must be even and >= 4");
-  const auto t0 = clock_type::now();
-  EvaluationSet e;
-  e.family = "spiral";
-  e.sites = surface::bauer_spiral(n);
-  const surface::RbfWeights q = surface::rbf_sphere_weights(e.sites, 3);
-  e.w = q.w;
-  e.rcond = q.rcond;
-  e.tris = surface::sphere_triangulation(e.sites);
-  e.Z = surface::ellipsoid(1, 1, 1).points(e.sites);
-  e.axis_site = rightmost_site(e.sites);
-  e.seconds = since(t0);
-  return e;
 }
 
 /// SHVD relaxation measured at one evaluation site: chapter3::Relaxation measures SHVD's d_max at
@@ -139,7 +106,7 @@ class Runs {
   const EvaluationSet& evaluation_set(index_t n) {
     auto it = sets_.find(n);
     if (it == sets_.end()) {
-      it = sets_.emplace(n, n % 2 ? make_evaluation_set(n) : even_spiral_set(n)).first;
+      it = sets_.emplace(n, make_evaluation_set(n)).first;
       st::log(opt_, "evaluation set n = " + to_text(n) + ": weights and triangulation in " +
                         to_text(it->second.seconds) + " s");
     }

@@ -527,12 +527,12 @@ RunResult run_orientation(const Orientation& o, const Setup& s, double figure_ti
     }
   };
   // The state at the figure's time (quick: mid-run); none when that time is the end (the end has its own).
+  bool figure_taken = figure_time >= s.t_end * (1 - 1e-12);  // (a continued run: read from its series below)
   hk.after_step = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport* rep, run::SeriesSet& series) {
     if (!rep) return;
     last = *rep;
-    const bool taken = std::any_of(series["shapes"].rows.begin(), series["shapes"].rows.end(),
-                                   [&](const std::vector<double>& r) { return r.at(1) == code(figure_moment, kMoments, 4); });
-    if (taken || figure_time >= s.t_end * (1 - 1e-12) || ib.time() < figure_time * (1 - 1e-12)) return;
+    if (figure_taken || ib.time() < figure_time * (1 - 1e-12)) return;
+    figure_taken = true;
     const Sites at = sites(ib);
     std::vector<std::vector<double>>& samples = series["samples"].rows;
     if (samples.empty() || std::lround(samples.back().at(0)) != ib.step_count()) samples.push_back(sample(ib, at));
@@ -540,6 +540,12 @@ RunResult run_orientation(const Orientation& o, const Setup& s, double figure_ti
   };
   hk.progress = [&](const run::Progress& q) { st::log(opt, s.label + " " + o.id + ": " + q.describe()); };
   run::Run runner(text, dir + "/scene.yaml", ro, hk);
+  if (runner.continued()) {
+    const std::vector<std::vector<double>>& taken = runner.series("shapes").rows;
+    figure_taken = figure_taken || std::any_of(taken.begin(), taken.end(), [&](const std::vector<double>& r) {
+                     return r.at(1) == code(figure_moment, kMoments, 4);
+                   });
+  }
   if (runner.continued())
     st::log(opt, s.label + " " + o.id + ": continuing from " + checkpoint + " at step " + to_text(runner.ib().step_count()) + ", t = " +
                      fmt(runner.ib().time() / units::us) + " us");

@@ -133,17 +133,29 @@ void require_finite(const dvec& U, const std::string& who, int step) {
 
 const char* to_string(Method m) { return m == Method::shvd ? "SHVD" : "LDSM"; }
 
+index_t rightmost_site(const surface::SphereSites& sites) {
+  index_t best = 0;
+  for (index_t i = 1; i < sites.size(); ++i)
+    if (std::cos(sites.theta[i]) * std::cos(sites.lambda[i]) > std::cos(sites.theta[best]) * std::cos(sites.lambda[best]))
+      best = i;
+  return best;
+}
+
 EvaluationSet make_evaluation_set(index_t n) {
-  require(n >= 5 && n % 2 == 1, "evaluation set size n", n, "must be odd and >= 5 (a Bauer-spiral site on the x axis)");
+  require(n >= 4, "evaluation set size n", n, "must be >= 4");
   const auto t0 = clock_type::now();
   EvaluationSet e;
   e.family = "spiral";
   e.sites = surface::bauer_spiral(n);
-  // Site j = (n + 1)/2 (1-based) has latitude asin(0) = 0 and longitude mod(pi, 2 pi) - pi = 0.
-  e.axis_site = (n + 1) / 2 - 1;
-  if (e.sites.lambda[e.axis_site] != 0.0 || e.sites.theta[e.axis_site] != 0.0)
-    throw NumericalError(Cause::solver, "Bauer spiral of " + to_text(n) + " sites: site " + to_text(e.axis_site) +
-                         " is not at (lambda, theta) = (0, 0)");
+  if (n % 2 == 1) {
+    // Site j = (n + 1)/2 (1-based) has latitude asin(0) = 0 and longitude mod(pi, 2 pi) - pi = 0.
+    e.axis_site = (n + 1) / 2 - 1;
+    if (e.sites.lambda[e.axis_site] != 0.0 || e.sites.theta[e.axis_site] != 0.0)
+      throw NumericalError(Cause::solver, "Bauer spiral of " + to_text(n) + " sites: site " + to_text(e.axis_site) +
+                           " is not at (lambda, theta) = (0, 0)");
+  } else {
+    e.axis_site = rightmost_site(e.sites);  // no site on the x axis (the rightmost lies sqrt(pi / n) from it)
+  }
   const surface::RbfWeights q = surface::rbf_sphere_weights(e.sites, 3);
   e.w = q.w;
   e.rcond = q.rcond;

@@ -67,10 +67,16 @@ struct EvaluationSet {
   double seconds = 0;  ///< time to build (weights and triangulation)
   index_t size() const { return sites.size(); }
 };
-/// A Bauer spiral (dissertation eq. 5.1) of odd size n, which puts site (n + 1)/2 exactly at
-/// (lambda, theta) = (0, 0), with the weights of dissertation eq. (2.22), phi = r^3. Throws
-/// InputError for an even n or n < 5.
+/// A Bauer spiral (dissertation eq. 5.1) of n sites with the weights of dissertation eq. (2.22),
+/// phi = r^3. An odd n puts site (n + 1)/2 exactly at (lambda, theta) = (0, 0), its axis_site; an
+/// even n has no site on the x axis, and axis_site is its rightmost site (rightmost_site), where
+/// the runs measure d_max. Throws InputError for n < 4.
 EvaluationSet make_evaluation_set(index_t n);
+
+/// The site with the largest x on the unit sphere. The ellipsoid of eq. (88) stretches the
+/// sphere's x by a > 0, so this is the rightmost evaluation site at t = 0: the paper's d_max point
+/// ("the point with largest x coordinate", Sec. 4.2).
+index_t rightmost_site(const surface::SphereSites& sites);
 
 /// The stored maximal-determinant-like sites of degree N (reference/point_sets, n = (N+1)^2) with
 /// the nonnegative weights of eq. (45) (the paper's choice); `file` is the path of the set.

@@ -17,8 +17,9 @@ RunProgress SceneRun::progress(double t_end) const {
 SceneRun run_scene(const std::string& text, const std::string& tag, int every, bool resumable, const Options& opt,
                    const SceneRunHooks& hooks, double max_seconds) {
   std::ofstream(opt.out_dir + "/scene_" + tag + ".yaml") << text;
+  scene::Scene sc = scene::parse_scene(text, "scene_" + tag + ".yaml");
   run::Options o;
-  o.t_end = scene::parse_scene(text, "scene_" + tag + ".yaml").t_end;
+  o.t_end = sc.t_end;
   o.sitting = resumable ? std::max(0.0, max_seconds) : INFINITY;  // a spent sitting takes no step
   if (resumable) o.checkpoint = opt.out_dir + "/checkpoint_" + tag + ".h5";
   o.sample_every = {every, 0, 0};
@@ -34,7 +35,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
     series["samples"].rows.push_back(hooks.sample(ib, report));
   };
   h.progress = [&](const run::Progress& p) { log(opt, tag + ": " + p.describe()); };
-  run::Run run(text, "scene_" + tag + ".yaml", o, h);
+  run::Run run(std::move(sc), o, h);
   if (run.continued()) log(opt, tag + ": continuing from " + o.checkpoint + " at t = " + to_text(run.ib().time() / units::ms) + " ms");
   const run::Progress p = run.evolve();
   SceneRun r;

@@ -46,6 +46,33 @@ Cause status_cause(int s) {
 
 RBFIB_HD inline bool finite(double v) { return (v - v) == 0.0; }
 
+/// The per-cell sums of q per-site quantities, the n_s x qN matrix w.site_sums (column k N + c:
+/// quantity k of cell c), as one product with a vector of ones; on the host, entry k N + c.
+std::vector<double> per_cell_sums(Batch::Workspace& w, index_t ns, int q, index_t N) {
+  w.cell_sums.resize(static_cast<std::size_t>(q * N));
+  if (static_cast<index_t>(w.ones.size()) != ns) w.ones.assign(static_cast<std::size_t>(ns), 1.0);
+  linalg::gemm(linalg::Op::transpose, linalg::Op::none, 1.0, linalg::ConstMatrixView{ptr(w.site_sums), ns, q * N, ns},
+               linalg::ConstMatrixView{ptr(w.ones), ns, 1, ns}, 0.0, linalg::MatrixView{ptr(w.cell_sums), q * N, 1, q * N});
+  std::vector<double> s(w.cell_sums.size());
+  thrust::copy(w.cell_sums.begin(), w.cell_sums.end(), s.begin());
+  return s;
+}
+
+/// Area, volume and centroid of each cell from the per-cell sums s (quantity `area` is the area,
+/// area + 1 the volume, area + 2 .. area + 4 the volume moments); throws NumericalError for a cell
+/// turned inside out.
+void set_geometry(CellDiagnostics& cd, const std::vector<double>& s, int area, index_t N, const std::string& name) {
+  cd.area.assign(s.begin() + area * N, s.begin() + (area + 1) * N);
+  cd.volume.assign(s.begin() + (area + 1) * N, s.begin() + (area + 2) * N);
+  cd.centroid.assign(static_cast<std::size_t>(N), {0, 0, 0});
+  for (index_t c = 0; c < N; ++c) {
+    if (!(cd.volume[c] > 0))
+      throw NumericalError(Cause::inverted_cell, "cell type '" + name + "', cell " + to_text(c) + ": enclosed volume " +
+                                                     to_text(cd.volume[c]) + " cm^3 <= 0 (the surface is turned inside out)");
+    for (int d = 0; d < 3; ++d) cd.centroid[c][d] = s[(area + 2 + d) * N + c] / cd.volume[c];
+  }
+}
+
 /// Number of per-site contributions reduced per cell.
 constexpr int sums_per_site = 7;  // energy, dissipation, area, volume, 3 volume moments
 
@@ -257,29 +284,13 @@ void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings) 
 
   // 4. The first bad site, then sums per cell.
   raise_first_bad(w.status, ns, name, "sample");
-  // The per-site sums are an n_s x 7N matrix (column q N + c: quantity q of cell c), so the
-  // per-cell sums are one product with a vector of ones.
-  w.cell_sums.resize(static_cast<std::size_t>(sums_per_site * N));
-  if (static_cast<index_t>(w.ones.size()) != ns) w.ones.assign(static_cast<std::size_t>(ns), 1.0);
-  linalg::gemm(linalg::Op::transpose, linalg::Op::none, 1.0, linalg::ConstMatrixView{ptr(w.site_sums), ns, sums_per_site * N, ns},
-               linalg::ConstMatrixView{ptr(w.ones), ns, 1, ns}, 0.0,
-               linalg::MatrixView{ptr(w.cell_sums), sums_per_site * N, 1, sums_per_site * N});
-  std::vector<double> s(w.cell_sums.size());
-  thrust::copy(w.cell_sums.begin(), w.cell_sums.end(), s.begin());
+  const std::vector<double> s = per_cell_sums(w, ns, sums_per_site, N);
   CellDiagnostics& cd = out.cells;
   cd.energy.assign(s.begin(), s.begin() + N);
   cd.dissipation.assign(s.begin() + N, s.begin() + 2 * N);
-  cd.area.assign(s.begin() + 2 * N, s.begin() + 3 * N);
-  cd.volume.assign(s.begin() + 3 * N, s.begin() + 4 * N);
-  cd.centroid.assign(static_cast<std::size_t>(N), {0, 0, 0});
+  set_geometry(cd, s, 2, N, name);
   out.energy = 0;
-  for (index_t c = 0; c < N; ++c) {
-    if (!(cd.volume[c] > 0))
-      throw NumericalError(Cause::inverted_cell, "cell type '" + name + "', cell " + to_text(c) + ": enclosed volume " + to_text(cd.volume[c]) +
-                           " cm^3 <= 0 (the surface is turned inside out)");
-    out.energy += cd.energy[c];
-    for (int d = 0; d < 3; ++d) cd.centroid[c][d] = s[(4 + d) * N + c] / cd.volume[c];
-  }
+  for (index_t c = 0; c < N; ++c) out.energy += cd.energy[c];
   if (timings) timings->reductions = seconds_since(t0);
 }
 
@@ -316,24 +327,10 @@ void measure(const Batch& batch, CellGeometry& out) {
     for (int d = 0; d < 3; ++d) sums[(2 + d) * total + k] = 0.5 * X.x[d] * X.x[d] * g.n[d] * dA;
   });
   raise_first_bad(w.status, ns, name, "sample");
-  w.cell_sums.resize(static_cast<std::size_t>(q * N));
-  if (static_cast<index_t>(w.ones.size()) != ns) w.ones.assign(static_cast<std::size_t>(ns), 1.0);
-  linalg::gemm(linalg::Op::transpose, linalg::Op::none, 1.0, linalg::ConstMatrixView{ptr(w.site_sums), ns, q * N, ns},
-               linalg::ConstMatrixView{ptr(w.ones), ns, 1, ns}, 0.0, linalg::MatrixView{ptr(w.cell_sums), q * N, 1, q * N});
-  std::vector<double> s(w.cell_sums.size());
-  thrust::copy(w.cell_sums.begin(), w.cell_sums.end(), s.begin());
   CellDiagnostics& cd = out.cells;
   cd.energy.clear();
   cd.dissipation.clear();
-  cd.area.assign(s.begin(), s.begin() + N);
-  cd.volume.assign(s.begin() + N, s.begin() + 2 * N);
-  cd.centroid.assign(static_cast<std::size_t>(N), {0, 0, 0});
-  for (index_t c = 0; c < N; ++c) {
-    if (!(cd.volume[c] > 0))
-      throw NumericalError(Cause::inverted_cell, "cell type '" + name + "', cell " + to_text(c) + ": enclosed volume " +
-                                                     to_text(cd.volume[c]) + " cm^3 <= 0 (the surface is turned inside out)");
-    for (int d = 0; d < 3; ++d) cd.centroid[c][d] = s[(2 + d) * N + c] / cd.volume[c];
-  }
+  set_geometry(cd, per_cell_sums(w, ns, q, N), 0, N, name);
 }
 
 }  // namespace rbfib::cells

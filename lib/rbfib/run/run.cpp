@@ -66,8 +66,10 @@ std::string Progress::describe() const {
 }
 
 Run::Run(const std::string& text, const std::string& origin, Options options, Hooks hooks)
-    : text_(text),
-      scene_(scene::parse_scene(text, origin)),
+    : Run(scene::parse_scene(text, origin), std::move(options), std::move(hooks)) {}
+
+Run::Run(scene::Scene scene, Options options, Hooks hooks)
+    : scene_(std::move(scene)),
       options_(std::move(options)),
       hooks_(std::move(hooks)),
       ib_(scene::build(scene_, !hooks_.prepare)) {
@@ -76,7 +78,7 @@ Run::Run(const std::string& text, const std::string& origin, Options options, Ho
   if (hooks_.built) hooks_.built(ib_);
   if (!options_.checkpoint.empty() && std::filesystem::exists(options_.checkpoint)) {
     io::Checkpoint k = io::read_checkpoint(options_.checkpoint);
-    if (k.scene_yaml == text_) {
+    if (k.scene_yaml == scene_.source) {
       ib_.restore(k.state);
       record_ = std::move(k.record);
       continued_ = true;
@@ -103,7 +105,7 @@ void Run::sample(const sim::IbStepReport* report) {
 
 void Run::checkpoint() {
   if (options_.checkpoint.empty()) return;
-  io::write_checkpoint(options_.checkpoint, text_, ib_, record_);
+  io::write_checkpoint(options_.checkpoint, scene_.source, ib_, record_);
   if (hooks_.checkpointed) hooks_.checkpointed(record_.series);
 }
 

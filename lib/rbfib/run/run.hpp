@@ -102,6 +102,8 @@ class Run {
   /// checkpoint of another scene text is left for evolve() to replace. With hooks.prepare the
   /// scene is built without its contact check: the hook's caller checks the state it sets.
   Run(const std::string& text, const std::string& origin, Options options, Hooks hooks);
+  /// The same for a scene already read (its text: scene.source).
+  Run(scene::Scene scene, Options options, Hooks hooks);
 
   /// Steps until the run's end, the sitting's end, `until` or a numerical stop; returns where it
   /// stands. A run already ended returns at once.
@@ -122,8 +124,7 @@ class Run {
 
  private:
   void sample(const sim::IbStepReport* report);
-  std::string text_;
-  scene::Scene scene_;
+  scene::Scene scene_;  // its text (scene_.source) is what the checkpoint must match
   Options options_;
   Hooks hooks_;
   sim::ImmersedBoundary ib_;
