@@ -25,12 +25,16 @@
 //         (eq. 95, equal node areas: the mean over the nodes); X_cap^{k+1} = X^_cap + dt u_c and
 //         X_cell^{k+1} = X_cell^k + dt (U_cell + u_c): the constant velocity u_c is added
 //         throughout the domain, the cell included.
-// The state is the Lagrangian positions alone (the Stokes solve has no memory), so a checkpoint
-// is the positions, the step and the records so far; a resumed run continues bit for bit.
+// The run is the library's coupled step (forward Euler on steady periodic Stokes, the capillary's
+// nodes holding the frame, the background force as a body force density) stepped by the library's
+// run loop; its records are the run's series, kept in its checkpoint; a resumed run continues bit
+// for bit.
 #include "common/chapter3_relaxation.hpp"
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/fluid/periodic_stokes.hpp"
 #include "rbfib/ib/interaction.hpp"
+
+#include <cmath>
 
 #include <array>
 #include <memory>
@@ -105,16 +109,20 @@ struct Phases {
 
 class Run {
  public:
-  /// eval: the cell's evaluation sites (ignored without a cell).
-  Run(const Model& model, const chapter3::EvaluationSet* eval);
+  /// eval: the cell's evaluation sites (ignored without a cell). The run goes through the
+  /// library's run loop: with a checkpoint path it continues from that checkpoint when it holds
+  /// this setup (written every five minutes, at the sitting's end and at the run's end); `sitting`
+  /// bounds the wall seconds of one advance().
+  Run(const Model& model, const chapter3::EvaluationSet* eval, const std::string& checkpoint = "",
+      double sitting = INFINITY);
   ~Run();
-  /// Takes steps until `steps` (or stop_after_seconds of wall time, then returns false so that a
-  /// checkpoint can be written); a NumericalError ends the run (kept in failure()), the last good
-  /// state kept. Returns true when the run is over.
-  bool advance(double stop_after_seconds = 1e300);
+  /// Takes steps to the run's end or the sitting's; a NumericalError ends the run (kept in
+  /// failure()), the last good state kept. Returns true when the run is over.
+  bool advance();
   int step() const;
   bool done() const;
-  const std::string& failure() const;
+  std::string failure() const;
+  bool continued() const;  ///< restored from its checkpoint
   const std::vector<Sample>& series() const;
   const std::vector<View>& views() const;
   const Phases& phases() const;
@@ -126,17 +134,10 @@ class Run {
   int capillary_around() const;
   int capillary_along() const;
   /// The x velocity of the last step's flow (cm/s, u_c added), interpolated with the run's kernel at
-  /// (x_probe, 0, z_j), z_j every h/2 across the box: pairs (z_j, u_x). A run without a cell read back
-  /// from its checkpoint solves the flow of its state first (the tether forces then belong to X^k,
-  /// not X^{k-1}: a difference of one step of a steady flow).
+  /// (x_probe, 0, z_j), z_j every h/2 across the box: pairs (z_j, u_x).
   std::vector<std::array<double, 2>> profile_x(double x_probe) const;
   /// Triangles of the cell's evaluation sites (convex hull on the sphere).
   const std::vector<surface::Triangle>& triangles() const;
-
-  /// Writes / reads the state (positions, step, records) as text; false when absent or for
-  /// another label.
-  void save(const std::string& path, const std::string& label) const;
-  bool load(const std::string& path, const std::string& label);
 
  private:
   struct Impl;

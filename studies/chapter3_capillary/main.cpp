@@ -129,23 +129,16 @@ class Runner {
   explicit Runner(const Setup& S) : S_(S), sitting_(S.opt) {}
   double elapsed() const { return sitting_.elapsed(); }
 
-  /// Advances `run` to its end (or to the sitting's budget). Returns whether it is over.
-  bool go(Run& run, const std::string& label) {
-    const std::string tag = label + " eta" + to_text(run.model().eta);
+  /// The run of model m labelled `label`, advanced to its end (or to the sitting's budget).
+  std::unique_ptr<Run> go(const Model& m, const chapter3::EvaluationSet* eval, const std::string& label) {
     const std::string path = S_.opt.out_dir + "/run_" + label +
-                             (label.find("_eta") == std::string::npos ? "_eta" + to_text(run.model().eta) : "") + ".bin";
-    if (S_.keep && run.load(path, tag))
-      st::log(S_.opt, label + ": resumed from " + path + " at step " + to_text(run.step()));
-    while (!run.done()) {
-      const double left = sitting_.remaining();
-      if (left <= 0) break;
-      run.advance(std::min(S_.keep ? 300.0 : 1e300, left));
-      if (S_.keep) run.save(path, tag);
-      st::log(S_.opt, label + ": step " + to_text(run.step()) + " of " + to_text(run.model().steps) + ", " +
-                          to_text(per_step(run)) + " s per step" +
-                          (run.failure().empty() ? std::string() : ", STOPPED: " + run.failure()));
-    }
-    return run.done();
+                             (label.find("_eta") == std::string::npos ? "_eta" + to_text(m.eta) : "") + ".h5";
+    auto run = std::make_unique<Run>(m, eval, S_.keep ? path : std::string(), std::max(0.0, sitting_.remaining()));
+    if (run->continued()) st::log(S_.opt, label + ": resumed from " + path + " at step " + to_text(run->step()));
+    run->advance();
+    st::log(S_.opt, label + ": step " + to_text(run->step()) + " of " + to_text(m.steps) + ", " + to_text(per_step(*run)) +
+                        " s per step" + (run->failure().empty() ? std::string() : ", STOPPED: " + run->failure()));
+    return run;
   }
   static double per_step(const Run& r) { return r.steps_timed() > 0 ? r.phases().total() / r.steps_timed() : NAN; }
 
@@ -542,9 +535,10 @@ int main(int argc, char** argv) {
       m.steps = 100;  // the flow is steady within a few steps (column u_max_change_last_half)
       m.record_every = 10;
       m.view_every = m.steps;
-      Run run(m, nullptr);
       const std::string label = std::string("empty_") + to_string(region) + "_eta" + to_text(eta);
-      const bool over = runner.go(run, label);
+      const std::unique_ptr<Run> ran = runner.go(m, nullptr, label);
+      const Run& run = *ran;
+      const bool over = run.done();
       // the study's grid under the id the checks name at both scales
       record(results, region == Region::core && eta == S.eta ? std::string("empty_core") : label, run);
       const auto& ser = run.series();
@@ -637,8 +631,8 @@ int main(int argc, char** argv) {
       m.M = cc.M;
       m.k_bend = cc.k_bend_pN_um * pN_um;
       const chapter3::EvaluationSet& e = sites_of(cc);
-      auto run = std::make_unique<Run>(m, &e);
-      const bool over = runner.go(*run, label);
+      std::unique_ptr<Run> run = runner.go(m, &e, label);
+      const bool over = run->done();
       record(results, label, *run);
       const int mm = (cc.M + 1) * (cc.M + 1);
       const double per = Runner::per_step(*run);

@@ -5,6 +5,7 @@
 #include "rbfib/core/error.hpp"
 #include "rbfib/fluid/periodic_stokes.hpp"
 #include "rbfib/ib/interaction.hpp"
+#include "rbfib/sim/ib_step.hpp"
 #include "rbfib/linalg/blas.hpp"
 #include "rbfib/mechanics/ldsm.hpp"
 #include "rbfib/surface/geometry.hpp"
@@ -21,36 +22,27 @@ namespace rbfib::chapter3 {
 
 namespace {
 
-/// X += dt U over `count` values on the device (eq. 87). A free function: nvcc does not allow
-/// device lambdas inside a private nested class.
-void forward_euler(double* X, const double* U, double dt, index_t count) {
-  for_each_index(count, [=] RBFIB_HD(index_t i) { X[i] += dt * U[i]; });
-}
 using clock_type = std::chrono::steady_clock;
 double since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
 
-/// The Eulerian side: the periodic MAC grid on [-L, L]^3, the exact Stokes solver (alpha = 0) and
-/// the kernel's interpolation and spreading.
-struct Fluid {
-  MacGrid grid;
-  PeriodicStokesSolver stokes;
-  ib::Interaction ib;
-  VectorField f, u;
-  dvec p;
-  Fluid(int eta, double L, double mu, ib::Kernel kernel)
-      : grid(periodic_grid(eta, L)),
-        stokes(grid, mu, 0.0),
-        ib({stokes.operators().component_box(0), stokes.operators().component_box(1),
-            stokes.operators().component_box(2)},
-           kernel) {}
-  static MacGrid periodic_grid(int eta, double L) {
-    require(eta >= 4, "grid size eta", eta, "must be >= 4");
-    MacGrid g = make_mac_grid(3, {eta, eta, eta}, {2 * L, 2 * L, 2 * L},
-                              {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
-    g.origin = {-L, -L, -L};
-    return g;
-  }
-};
+/// The periodic MAC grid on [-L, L]^3 with eta cells per side.
+MacGrid periodic_grid(int eta, double L) {
+  require(eta >= 4, "grid size eta", eta, "must be >= 4");
+  MacGrid g = make_mac_grid(3, {eta, eta, eta}, {2 * L, 2 * L, 2 * L},
+                            {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
+  g.origin = {-L, -L, -L};
+  return g;
+}
+
+/// The coupled step of Sec. 3.3: steady Stokes (alpha = 0, the exact inverse of the MAC operators),
+/// Chapter 3's forward Euler (eq. 87), the run's kernel, no stopping condition (the paper has none).
+sim::ImmersedBoundary chapter3_step(int eta, double L, double mu, double dt, ib::Kernel kernel) {
+  sim::IbOptions o;
+  o.coupling = sim::Coupling::forward_euler;
+  o.kernel = kernel;
+  o.stopping_condition = false;
+  return sim::ImmersedBoundary(std::make_unique<PeriodicStokesStep>(periodic_grid(eta, L), FluidParameters{1.0, mu}, dt, true), o);
+}
 
 /// Centroid of the volume enclosed by the triangulated surface X (n x 3 column-major), and the volume.
 void polyhedron_centroid(const std::vector<surface::Triangle>& tris, const std::vector<double>& X, double c[3],
@@ -126,9 +118,6 @@ double force_integral(const std::vector<double>& F) {
   return std::max({std::abs(s[0]), std::abs(s[1]), std::abs(s[2])});
 }
 
-void require_finite(const dvec& U, const std::string& who, int step) {
-  if (!blas::all_finite(U)) throw NumericalError(Cause::non_finite, who + ": non-finite interpolated velocity at step " + to_text(step));
-}
 }  // namespace
 
 const char* to_string(Method m) { return m == Method::shvd ? "SHVD" : "LDSM"; }
@@ -221,28 +210,22 @@ const surface::SphereSites& interpolation_sites(int M) {
 struct Relaxation::Impl {
   RelaxationSpec spec;
   const EvaluationSet& eval;
-  Fluid fluid;
+  sim::ImmersedBoundary ib;
   std::vector<mechanics::EnergyDensity> energies;
   RelaxationResult r;
   PhaseLog per_step;
   int k = 0;
   bool done = false;
   double axis0 = 0;
-  ib::SortedPoints at_eval, at_interp;
-  dvec U;
-  // SHVD: the batch of one cell (its state: the m interpolation sites), the force call's output
-  std::unique_ptr<cells::Batch> batch;
-  std::shared_ptr<const surface::SurfaceOperators> axis_ops;  // the interpolant at (0, 0)
-  cells::CellForces out;
-  cells::ForceTimings ft;
-  // LDSM: the n sites on the host (the force loop) and their copies for the interaction
-  std::vector<double> X, F, Uh;
-  dvec Xd, Fd;
+  std::shared_ptr<const surface::SurfaceOperators> axis_ops;  // SHVD: the interpolant at (0, 0)
+  cells::CellGeometry geometry;
 
   Impl(const RelaxationSpec& s, const EvaluationSet& e)
-      : spec(s), eval(e), fluid(s.eta, s.L, s.mu, s.kernel), energies(total_energy(s.Gs, s.A, s.sigma)) {
+      : spec(s),
+        eval(e),
+        ib(chapter3_step(s.eta, s.L, s.mu, s.dt, s.kernel)),
+        energies(total_energy(s.Gs, s.A, s.sigma)) {
     require(spec.steps >= 0, "steps", spec.steps, "must be >= 0");
-    require(spec.dt > 0, "time step dt", spec.dt, "must be > 0");
     require(spec.measure_site < index_t(eval.size()), "measure_site", spec.measure_site, "must be a site of the evaluation set");
     if (spec.method == Method::shvd) {
       // The cell type: unit-sphere reference, the degree-M interpolant through the m sites (LU of
@@ -256,24 +239,43 @@ struct Relaxation::Impl {
       ts.sh_degree = spec.M;
       ts.sphere_weights = eval.w;
       ts.model.elastic = energies;
-      batch = std::make_unique<cells::Batch>(std::make_shared<const cells::CellType>(ts),
-                                             std::vector<cells::Placement>{cells::Placement{}});
+      cells::Batch batch(std::make_shared<const cells::CellType>(ts), std::vector<cells::Placement>{cells::Placement{}});
+      const std::vector<double> X0 = spec.shape.points(ts.data_sites);  // eq. (88) or (89) at the m sites
+      thrust::copy(X0.begin(), X0.end(), batch.state().storage().begin());
+      ib.add(std::move(batch));
       surface::SphereSites axis;
       axis.lambda = {0.0};
       axis.theta = {0.0};
       axis_ops = surface::sh_operators(ts.data_sites, axis, spec.M);
-      const std::vector<double> X0 = spec.shape.points(ts.data_sites);  // eq. (88) or (89) at the m sites
-      thrust::copy(X0.begin(), X0.end(), batch->state().storage().begin());
     } else {
-      X = spec.shape.points(eval.sites);
-      Uh.resize(X.size());
-      Xd.resize(X.size());
-      Fd.resize(X.size());
+      ib.add(sim::LdsmShell{"LDSM", eval.tris, eval.Z, spec.shape.points(eval.sites), energies});
     }
   }
 
   bool record_now() const { return k == 0 || k == spec.steps || (spec.record_every > 0 && k % spec.record_every == 0); }
-  void record(const std::vector<double>& Xs, double x_axis, const double c[3], double volume) {
+
+  /// The diagnostics of the header at X^k.
+  void record() {
+    double c[3], volume, x_axis = 0;
+    std::vector<double> Xs;
+    if (spec.method == Method::shvd) {
+      const cells::Batch& batch = ib.batch(0);
+      cells::measure(batch, geometry);
+      for (int d = 0; d < 3; ++d) c[d] = geometry.cells.centroid[0][d];
+      volume = geometry.cells.volume[0];
+      Xs = geometry.positions.to_host();
+      // the material point (0, 0) on the interpolant (an evaluation site of the spirals), or the
+      // evaluation site asked for
+      x_axis = spec.measure_site >= 0 ? Xs.at(std::size_t(spec.measure_site))
+                                      : surface::jets_from_operators(*axis_ops, batch.positions_host())[0].x[0];
+    } else {
+      Xs = ib.shell(0).shell().X;
+      polyhedron_centroid(eval.tris, Xs, c, volume);
+      if (eval.axis_site >= 0)  // the material point (0, 0) on the piecewise-linear surface
+        x_axis = Xs[eval.axis_site];
+      else
+        for (int v = 0; v < 3; ++v) x_axis += eval.axis_weights[v] * Xs[eval.axis_triangle[v]];
+    }
     if (k == 0) axis0 = x_axis - c[0];
     r.series.push_back(sample(k * spec.dt, Xs, x_axis, c, volume, axis0));
   }
@@ -282,89 +284,21 @@ struct Relaxation::Impl {
     steps.push_back(t);
   }
 
-  /// Forces at X^k (and the diagnostics when due); then, unless k = steps, the step to X^{k+1}.
-  void advance_shvd() {
-    const index_t n = eval.size(), m = batch->type().n_data();
-    auto t0 = clock_type::now();
-    cells::compute_forces(*batch, out, &ft);  // steps 1-2 (and F^ = F dA0)
-    const double t_forces = since(t0);
-    if (k == 0) {
-      const std::vector<double> F0 = out.force.to_host();
+  /// The step from X^k to X^{k+1} on the library's coupled step (forward Euler, steady Stokes).
+  void step() {
+    const sim::IbStepReport rep = ib.step();
+    if (k == 0) {  // the forces at X^0
+      const std::vector<double> F0 =
+          spec.method == Method::shvd ? ib.batch_set(0).forces().force.to_host() : ib.shell(0).force();
       r.force_integral0 = force_integral(F0);
       r.max_force0 = max_abs(F0);
     }
-    if (record_now()) {
-      const double c[3] = {out.cells.centroid[0][0], out.cells.centroid[0][1], out.cells.centroid[0][2]};
-      // the material point (0, 0) on the interpolant (an evaluation site of the spirals), or the
-      // evaluation site asked for
-      const std::vector<double> Xs = out.positions.to_host();
-      const double x_axis = spec.measure_site >= 0 ? Xs.at(std::size_t(spec.measure_site))
-                                                   : surface::jets_from_operators(*axis_ops, batch->positions_host())[0].x[0];
-      record(Xs, x_axis, c, out.cells.volume[0]);
-    }
-    if (k == spec.steps) return;
-    add(r.phases.forces, per_step.forces, t_forces);
-    add(r.phases.force_products, per_step.products, ft.products());
-    t0 = clock_type::now();  // step 3: spread from the evaluation sites
-    fluid.ib.sort(ptr(out.positions.storage()), n, at_eval);
-    fluid.ib.spread(at_eval, ptr(out.force.storage()), fluid.f);
-    add(r.phases.spread, per_step.spread, since(t0));
-    t0 = clock_type::now();  // step 4
-    fluid.stokes.solve(fluid.f, fluid.u, fluid.p);
-    add(r.phases.solve, per_step.solve, since(t0));
-    t0 = clock_type::now();                      // step 5: velocity at the interpolation sites
-    double* Xm = ptr(batch->state().storage());  // positions: the first 3m entries
-    fluid.ib.sort(Xm, m, at_interp);
-    U.resize(static_cast<std::size_t>(3 * m));
-    fluid.ib.interpolate(at_interp, fluid.u, ptr(U));
-    add(r.phases.interpolate, per_step.interpolate, since(t0));
-    t0 = clock_type::now();  // step 6, eq. (87)
-    require_finite(U, "SHVD", k);
-    const double dt = spec.dt;
-    const double* Up = ptr(U);
-    forward_euler(Xm, Up, dt, 3 * m);
-    add(r.phases.update, per_step.update, since(t0));
-  }
-
-  void advance_ldsm() {
-    const index_t n = eval.size();
-    auto t0 = clock_type::now();
-    F = mechanics::ldsm_forces("LDSM", eval.tris, eval.Z, X, energies).F;  // eq. (66)
-    const double t_forces = since(t0);
-    if (k == 0) {
-      r.force_integral0 = force_integral(F);
-      r.max_force0 = max_abs(F);
-    }
-    if (record_now()) {
-      double c[3], volume;
-      polyhedron_centroid(eval.tris, X, c, volume);
-      double x_axis = 0;  // the material point (0, 0) on the piecewise-linear surface
-      if (eval.axis_site >= 0)
-        x_axis = X[eval.axis_site];
-      else
-        for (int v = 0; v < 3; ++v) x_axis += eval.axis_weights[v] * X[eval.axis_triangle[v]];
-      record(X, x_axis, c, volume);
-    }
-    if (k == spec.steps) return;
-    add(r.phases.forces, per_step.forces, t_forces);
-    t0 = clock_type::now();  // spread from the n sites
-    thrust::copy(X.begin(), X.end(), Xd.begin());
-    thrust::copy(F.begin(), F.end(), Fd.begin());
-    fluid.ib.sort(ptr(Xd), n, at_eval);
-    fluid.ib.spread(at_eval, ptr(Fd), fluid.f);
-    add(r.phases.spread, per_step.spread, since(t0));
-    t0 = clock_type::now();
-    fluid.stokes.solve(fluid.f, fluid.u, fluid.p);
-    add(r.phases.solve, per_step.solve, since(t0));
-    t0 = clock_type::now();  // velocity at the same n sites: the sort is reused
-    U.resize(static_cast<std::size_t>(3 * n));
-    fluid.ib.interpolate(at_eval, fluid.u, ptr(U));
-    thrust::copy(U.begin(), U.end(), Uh.begin());
-    add(r.phases.interpolate, per_step.interpolate, since(t0));
-    t0 = clock_type::now();  // eq. (87)
-    require_finite(U, "LDSM", k);
-    for (std::size_t i = 0; i < X.size(); ++i) X[i] += spec.dt * Uh[i];
-    add(r.phases.update, per_step.update, since(t0));
+    add(r.phases.forces, per_step.forces, rep.seconds_forces);
+    add(r.phases.force_products, per_step.products, rep.seconds_force_products);
+    add(r.phases.spread, per_step.spread, rep.seconds_spreading);
+    add(r.phases.solve, per_step.solve, rep.seconds_fluid);
+    add(r.phases.interpolate, per_step.interpolate, rep.seconds_interpolation);
+    add(r.phases.update, per_step.update, rep.seconds_update);
   }
 };
 
@@ -377,14 +311,14 @@ bool Relaxation::advance() {
   if (s.done) return false;
   const auto t0 = clock_type::now();
   try {
-    if (s.spec.method == Method::shvd)
-      s.advance_shvd();
-    else
-      s.advance_ldsm();
+    // X^k recorded when due (the forces of the step follow), then the step to X^{k+1}.
+    if (s.record_now()) s.record();
     if (s.k == s.spec.steps)
       s.done = true;
-    else
+    else {
+      s.step();
       ++s.k;
+    }
   } catch (const NumericalError& e) {
     s.r.failed = true;
     s.r.failure = std::string(to_string(s.spec.method)) + " at step " + to_text(s.k) +

@@ -4,10 +4,14 @@
 // condition of eq. 5.4) stop the step with a named error and keep the state before it.
 #include "../common/errors.hpp"
 #include "rbfib/cells/presets.hpp"
+#include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/linalg/blas.hpp"
+#include "rbfib/mechanics/ldsm.hpp"
 #include "rbfib/sim/ib_step.hpp"
+#include "rbfib/surface/point_sets.hpp"
+#include "rbfib/surface/shapes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -381,6 +385,121 @@ TEST(IbStep, TemporalOrdersOfTheTwoCouplings) {
   io.coupling = Coupling::midpoint;
   const MacGrid g = box16();
   EXPECT_THROW(ImmersedBoundary(g, FluidParameters{1.0, 0.1 * units::cP}, o, {}, io), InputError);
+}
+
+// ---- Chapter 3's forward Euler on periodic Stokes -------------------------------------------
+
+/// A stretched unit-radius LDSM shell (300 spiral vertices, neo-Hookean + tension) in [-2, 2]^3,
+/// dimensionless as Chapter 3's dynamic test.
+LdsmShell stretched_shell() {
+  const surface::SphereSites sites = surface::bauer_spiral(300);
+  LdsmShell s;
+  s.name = "shell";
+  s.triangles = surface::sphere_triangulation(sites);
+  s.reference = surface::ellipsoid(1, 1, 1).points(sites);
+  s.X = surface::ellipsoid(1.2, 1, 1 / 1.2).points(sites);
+  s.energies = {mechanics::EnergyDensity::neo_hookean_paper(1, 1), mechanics::EnergyDensity::surface_tension(1)};
+  return s;
+}
+
+MacGrid chapter3_box(int eta) {
+  MacGrid g = make_mac_grid(3, {eta, eta, eta}, {4.0, 4.0, 4.0}, {MB::periodic, MB::periodic, MB::periodic});
+  g.origin = {-2, -2, -2};
+  return g;
+}
+
+ImmersedBoundary forward_euler(const MacGrid& g, double dt, IbOptions o = {}) {
+  o.coupling = Coupling::forward_euler;
+  o.kernel = ib::Kernel::peskin4;
+  o.stopping_condition = false;
+  return ImmersedBoundary(std::make_unique<PeriodicStokesStep>(g, FluidParameters{1.0, 1.0}, dt, true), o);
+}
+
+TEST(IbStep, ForwardEulerOnSteadyStokesIsChapter3sUpdateBitForBit) {
+  // Sec. 3.3 written out by hand (forces at X^k by eq. 66, spread from X^k, the exact Stokes flow,
+  // U at X^k, X^{k+1} = X^k + dt U) against the library's step with an LDSM shell.
+  const MacGrid g = chapter3_box(16);
+  const double dt = 1.0 / 64;
+  ImmersedBoundary ib = forward_euler(g, dt);
+  const LdsmShell shell = stretched_shell();
+  ib.add(shell);
+  PeriodicStokesSolver stokes(g, 1.0, 0.0);
+  const MacOperators& ops = stokes.operators();
+  ib::Interaction I({ops.component_box(0), ops.component_box(1), ops.component_box(2)}, ib::Kernel::peskin4);
+  std::vector<double> X = shell.X;
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<double> F = mechanics::ldsm_forces("shell", shell.triangles, shell.reference, X, shell.energies).F;
+    dvec Xd(X.begin(), X.end()), Fd(F.begin(), F.end()), U;
+    ib::SortedPoints at;
+    I.sort(ptr(Xd), index_t(X.size() / 3), at);
+    VectorField f, u;
+    dvec p;
+    I.spread(at, ptr(Fd), f);
+    stokes.solve(f, u, p);
+    U.resize(X.size());
+    I.interpolate(at, u, ptr(U));
+    const std::vector<double> Uh(U.begin(), U.end());
+    for (std::size_t i = 0; i < X.size(); ++i) X[i] += dt * Uh[i];
+    const IbStepReport r = ib.step();
+    EXPECT_EQ(r.dt, dt);
+    EXPECT_TRUE(ib.fluid_state().u[0] == u[0]) << "step " << k;
+  }
+  EXPECT_TRUE(ib.shell(0).shell().X == X);
+  EXPECT_NEAR(ib.time(), 3 * dt, 1e-15);
+}
+
+TEST(IbStep, AFrameSetReturnsToItsAnchorsOnAverageAndCarriesEveryoneWithIt) {
+  // Eqs. 94-95: the frame velocity u_c moves everything so that the mean of X' - X^{n+1} over a
+  // ring of tethered nodes vanishes after each step: a ring displaced downstream by 0.1 is put
+  // back by u_c of about -0.1 / dt, and a shell away from the ring moves with it by dt (U + u_c).
+  const MacGrid g = chapter3_box(16);
+  const double dt = 1.0 / 64;
+  IbOptions o;
+  const index_t n = 16;
+  host_vector<double> Z(3 * n);
+  for (index_t q = 0; q < n; ++q) {
+    Z[q] = -1.0 + 0.1 * (q % 2);
+    Z[n + q] = 1.2 * std::cos(2 * pi * q / n);
+    Z[2 * n + q] = 1.2 * std::sin(2 * pi * q / n);
+  }
+  ImmersedBoundary ib = forward_euler(g, dt, o);
+  TetheredPoints ring{"ring", Z, Z, 5.0, 0.0};
+  ring.frame = true;
+  ib.add(ring);
+  ring.name = "second";
+  EXPECT_THROW(ib.add(ring), InputError);  // one frame only
+  for (int k = 0; k < 4; ++k) {
+    const IbStepReport r = ib.step();
+    const host_vector<double> X = ib.points(0).X;
+    for (int d = 0; d < 3; ++d) {
+      double mean = 0;
+      for (index_t q = 0; q < n; ++q) mean += Z[d * n + q] - X[d * n + q];
+      EXPECT_NEAR(mean / n, 0.0, 1e-15) << "step " << k << " axis " << d;
+    }
+    (void)r;
+  }
+  // A ring displaced downstream is pulled back and the frame moves with it.
+  host_vector<double> X = Z;
+  for (index_t q = 0; q < n; ++q) X[q] += 0.1;
+  ImmersedBoundary moved = forward_euler(g, dt, o);
+  TetheredPoints displaced{"ring", X, Z, 5.0, 0.0};
+  displaced.frame = true;
+  moved.add(displaced);
+  moved.add(stretched_shell());
+  const std::vector<double> S0 = moved.shell(0).shell().X;
+  const IbStepReport r = moved.step();
+  // u_c = mean(X' - X^) / dt: about -0.1 / dt (the springs' own flow moves X^ by far less).
+  EXPECT_NEAR(r.frame_velocity[0], -0.1 / dt, 0.05 * 0.1 / dt);
+  const host_vector<double> Xn = moved.points(0).X;
+  double mean = 0;
+  for (index_t q = 0; q < n; ++q) mean += Z[q] - Xn[q];
+  EXPECT_NEAR(mean / n, 0.0, 1e-15);
+  // The shell moved by dt (U + u_c): its mean x displacement is dt u_c plus its own small flow.
+  const std::vector<double>& S1 = moved.shell(0).shell().X;
+  double shift = 0;
+  const std::size_t ns = S1.size() / 3;
+  for (std::size_t i = 0; i < ns; ++i) shift += S1[i] - S0[i];
+  EXPECT_NEAR(shift / ns, dt * r.frame_velocity[0], 0.05 * 0.1);
 }
 
 }  // namespace

@@ -154,8 +154,9 @@ double NavierStokesSolver::max_divergence(const FluidState& state) const {
   return blas::norm_inf(div);
 }
 
-void NavierStokesSolver::stage(FluidState& state, const VectorField& u_src, double t_src, const VectorField& u_adv,
-                               double t_adv, double k, double theta, const VectorField* f, StepStats& stats, int s) {
+void NavierStokesSolver::stage(const dvec& p_in, const dvec& phi_in, VectorField& u, dvec& p, dvec& phi,
+                               const VectorField& u_src, double t_src, const VectorField& u_adv, double t_adv, double k,
+                               double theta, const VectorField* f, StepStats& stats, int s) {
   const int dims = grid_.dims;
   const double rho = fluid_.density, mu = fluid_.viscosity, nu = mu / rho;
   const double t_new = t_src + k;
@@ -165,10 +166,10 @@ void NavierStokesSolver::stage(FluidState& state, const VectorField& u_src, doub
   stats.seconds_advection += seconds_since(t0);
 
   t0 = clock_type::now();
-  ops_.gradient(state.p, gp_);
+  ops_.gradient(p_in, gp_);
   // gamma*: the data at t_new, plus the lagged slip G phi on tangential components at no-slip walls.
   VelocityBoundaryData gstar = boundary_data(t_new);
-  ops_.gradient(state.phi[s], tmp_);
+  ops_.gradient(phi_in, tmp_);
   for (int a = 0; a < dims; ++a)
     for (int d = 0; d < dims; ++d) {
       if (d == a || grid_.periodic(d)) continue;
@@ -221,52 +222,60 @@ void NavierStokesSolver::stage(FluidState& state, const VectorField& u_src, doub
   } else {
     if (q_.size() != div_.size()) q_.assign(div_.size(), 0.0);
     // initial guess: the last pseudo-pressure, phi / k
-    for_each_index(index_t(q_.size()), Scaled{ptr(state.phi[s]), 1.0 / k, ptr(q_)});
+    for_each_index(index_t(q_.size()), Scaled{ptr(phi_in), 1.0 / k, ptr(q_)});
     stats.poisson_iterations[s] = poisson_->solve(div_, q_).iterations;
   }
   stats.seconds_poisson += seconds_since(t0);
 
   t0 = clock_type::now();
   ops_.gradient(q_, gp_);
-  VectorField& u = state.u;
   for (int a = 0; a < dims; ++a) {
     u[a] = ustar_[a];
     blas::axpy(-k, gp_[a], u[a]);
   }
   pressure_laplacian().apply(q_, lq_);
-  blas::axpy(rho, q_, state.p);
-  blas::axpy(-theta * k * mu, lq_, state.p);
-  for_each_index(index_t(q_.size()), Scaled{ptr(q_), k, ptr(state.phi[s])});  // phi = k q
+  if (&p != &p_in) p = p_in;
+  blas::axpy(rho, q_, p);
+  blas::axpy(-theta * k * mu, lq_, p);
+  phi.resize(q_.size());
+  for_each_index(index_t(q_.size()), Scaled{ptr(q_), k, ptr(phi)});  // phi = k q
   stats.seconds_projection += seconds_since(t0);
   ++stats.stages;
 }
 
 StepStats NavierStokesSolver::step(FluidState& state, const VectorField* f) {
+  StepStats stats = step(state, spare_, f);
+  std::swap(state, spare_);
+  return stats;
+}
+
+StepStats NavierStokesSolver::step(const FluidState& from, FluidState& to, const VectorField* f) {
+  require(&from != &to, "fluid.step", "the same state", "must write the new state into another one than it reads");
   for (int a = 0; a < grid_.dims; ++a)
-    require(index_t(state.u[a].size()) == ops_.component_box(a).size(), "fluid.state.u[" + std::to_string(a) + "].size",
-            state.u[a].size(), "does not match the MAC grid");
-  require(index_t(state.p.size()) == ops_.scalar_box().size(), "fluid.state.p.size", state.p.size(),
+    require(index_t(from.u[a].size()) == ops_.component_box(a).size(), "fluid.state.u[" + std::to_string(a) + "].size",
+            from.u[a].size(), "does not match the MAC grid");
+  require(index_t(from.p.size()) == ops_.scalar_box().size(), "fluid.state.p.size", from.p.size(),
           "does not match the MAC grid");
-  for (dvec& phi : state.phi)
-    if (index_t(phi.size()) != ops_.scalar_box().size()) phi.assign(ops_.scalar_box().size(), 0.0);
+  // phi of a fresh state is empty: zero (no lagged correction yet).
+  const dvec zero_phi = from.phi[0].size() == from.p.size() && from.phi[1].size() == from.p.size()
+                            ? dvec() : dvec(from.p.size(), 0.0);
+  auto phi_of = [&](int s) -> const dvec& { return index_t(from.phi[s].size()) == ops_.scalar_box().size() ? from.phi[s] : zero_phi; };
   StepStats stats;
-  const double t = state.t, dt = options_.dt;
+  const double t = from.t, dt = options_.dt;
   if (options_.integrator == TimeIntegrator::backward_forward_euler) {
-    const VectorField un = state.u;
-    stage(state, un, t, un, t, dt, 1.0, f, stats, 0);
+    stage(from.p, phi_of(0), to.u, to.p, to.phi[0], from.u, t, from.u, t, dt, 1.0, f, stats, 0);
+    to.phi[1] = phi_of(1);  // carried unchanged (one stage)
   } else {
-    const VectorField un = state.u;
-    stage(state, un, t, un, t, 0.5 * dt, 1.0, f, stats, 0);  // u^{n+1/2}
-    u_half_ = state.u;
-    stage(state, un, t, u_half_, t + 0.5 * dt, dt, 0.5, f, stats, 1);
+    stage(from.p, phi_of(0), u_half_, to.p, to.phi[0], from.u, t, from.u, t, 0.5 * dt, 1.0, f, stats, 0);  // u^{n+1/2}
+    stage(to.p, phi_of(1), to.u, to.p, to.phi[1], from.u, t, u_half_, t + 0.5 * dt, dt, 0.5, f, stats, 1);
   }
-  state.t = t + dt;
+  to.t = t + dt;
   for (int a = 0; a < grid_.dims; ++a)
-    if (!blas::all_finite(state.u[a]))
+    if (!blas::all_finite(to.u[a]))
       throw NumericalError(Cause::non_finite, "fluid step at t = " + to_text(t) + ": velocity component " + std::to_string(a) +
                            " is not finite (NaN or Inf); limit: finite values");
   auto t0 = clock_type::now();
-  stats.max_divergence = max_divergence(state);
+  stats.max_divergence = max_divergence(to);
   stats.seconds_other += seconds_since(t0);
   return stats;
 }

@@ -94,8 +94,11 @@ class NavierStokesSolver {
 
   /// Advances state by one step dt. f: Eulerian force density (dyn/cm^3) at t^{n+1} (backward-
   /// forward Euler) or t^{n+1/2} (Peskin); nullptr: no force. Throws NumericalError from a solve
-  /// that does not converge, naming it.
+  /// that does not converge, naming it (state is then unchanged).
   StepStats step(FluidState& state, const VectorField* f = nullptr);
+  /// The same step from `from` into `to` (another state, resized as needed; `from` is not
+  /// touched): the double-buffered form, with no copy of the fields.
+  StepStats step(const FluidState& from, FluidState& to, const VectorField* f = nullptr);
 
   /// u^{n+1/2} of the last step of Peskin's two-stage scheme (its first stage); empty before one.
   const VectorField& midpoint_velocity() const { return u_half_; }
@@ -125,8 +128,10 @@ class NavierStokesSolver {
   const PoissonSolver& poisson() const;
 
  private:
-  void stage(FluidState& state, const VectorField& u_src, double t_src, const VectorField& u_adv, double t_adv,
-             double k, double theta, const VectorField* f, StepStats& stats, int s);
+  /// One stage: from the pressure p_in and the lagged phi_in into u, p (which may be p_in) and phi.
+  void stage(const dvec& p_in, const dvec& phi_in, VectorField& u, dvec& p, dvec& phi, const VectorField& u_src,
+             double t_src, const VectorField& u_adv, double t_adv, double k, double theta, const VectorField* f,
+             StepStats& stats, int s);
 
   MacGrid grid_;
   FluidParameters fluid_;
@@ -150,6 +155,7 @@ class NavierStokesSolver {
   mutable std::vector<std::pair<double, VelocityBoundaryData>> cache_;
   // workspace
   VectorField adv_, gp_, rhs_, ustar_, tmp_, u_half_;
+  FluidState spare_;  // the other buffer of the in-place step
   dvec div_, q_, lq_;
 };
 

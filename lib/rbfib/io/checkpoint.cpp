@@ -150,6 +150,9 @@ void write_checkpoint(const std::string& path, const std::string& scene_yaml, co
       for (std::size_t b = 0; b < c.batches.size(); ++b) array(batches, std::to_string(b), c.batches[b]);
       Id points = h5::create_group(file, "points");
       for (std::size_t p = 0; p < c.points.size(); ++p) array(points, std::to_string(p), c.points[p]);
+      Id shells = h5::create_group(file, "shells");
+      for (std::size_t q = 0; q < c.shells.size(); ++q)
+        h5::write(shells, std::to_string(q), c.shells[q].data(), {hsize_t(c.shells[q].size())});
     }
     h5::flush_and_sync(file, tmp);
   }
@@ -191,6 +194,15 @@ Checkpoint read_checkpoint(const std::string& path) {
     H5Gget_info(g, &info);
     auto& into = std::string(group) == "batches" ? k.state.batches : k.state.points;
     for (hsize_t i = 0; i < info.nlinks; ++i) into.push_back(r.array(g, std::to_string(i).c_str()));
+  }
+  if (H5Lexists(file, "shells", H5P_DEFAULT) > 0) {  // absent before LDSM shells joined the step: none
+    Id g{H5Gopen2(file, "shells", H5P_DEFAULT), H5Gclose};
+    H5G_info_t info;
+    H5Gget_info(g, &info);
+    for (hsize_t i = 0; i < info.nlinks; ++i) {
+      const dvec x = r.array(g, std::to_string(i).c_str());
+      k.state.shells.emplace_back(x.begin(), x.end());
+    }
   }
   if (version == format_1) return k;
   k.record.status = status_named(r.string_attribute(file, "status"), r);

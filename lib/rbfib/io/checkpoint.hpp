@@ -10,6 +10,7 @@
 //   /fluid/phi0, phi1     the lagged projection data (cm^2/s); attribute t (s)
 //   /batches/0, 1, ...    each cell batch's data-site state, n_d x 6N column-major: X then U
 //   /points/0, 1, ...     each tethered point set's positions, 3n
+//   /shells/0, 1, ...     each LDSM shell's vertices, 3n (absent in older files: none)
 //   /series/<name>/values every row of the series, one after the other; .../widths each row's
 //                         length; attribute columns (the columns' names, one per line; may be empty)
 //   attributes of /: format ("rbfib checkpoint 2"), steps, dt (s), level, allowing, status

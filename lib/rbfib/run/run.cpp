@@ -70,15 +70,30 @@ Run::Run(const std::string& text, const std::string& origin, Options options, Ho
 
 Run::Run(scene::Scene scene, Options options, Hooks hooks)
     : scene_(std::move(scene)),
+      source_(scene_->source),
       options_(std::move(options)),
       hooks_(std::move(hooks)),
-      ib_(scene::build(scene_, !hooks_.prepare)) {
+      ib_(scene::build(*scene_, !hooks_.prepare)) {
+  start();
+}
+
+Run::Run(std::string source, sim::ImmersedBoundary ib, Options options, Hooks hooks)
+    : source_(std::move(source)), options_(std::move(options)), hooks_(std::move(hooks)), ib_(std::move(ib)) {
+  start();
+}
+
+const scene::Scene& Run::scene() const {
+  if (!scene_) throw InputError("run scene", "none", "this run was built from a coupled step, not a scene");
+  return *scene_;
+}
+
+void Run::start() {
   require(options_.t_end > 0 && std::isfinite(options_.t_end), "run end t_end (s)", options_.t_end, "must be positive and finite");
   require(options_.sitting >= 0, "sitting (s)", options_.sitting, "must be >= 0");
   if (hooks_.built) hooks_.built(ib_);
   if (!options_.checkpoint.empty() && std::filesystem::exists(options_.checkpoint)) {
     io::Checkpoint k = io::read_checkpoint(options_.checkpoint);
-    if (k.scene_yaml == scene_.source) {
+    if (k.scene_yaml == source_) {
       ib_.restore(k.state);
       record_ = std::move(k.record);
       continued_ = true;
@@ -105,7 +120,7 @@ void Run::sample(const sim::IbStepReport* report) {
 
 void Run::checkpoint() {
   if (options_.checkpoint.empty()) return;
-  io::write_checkpoint(options_.checkpoint, scene_.source, ib_, record_);
+  io::write_checkpoint(options_.checkpoint, source_, ib_, record_);
   if (hooks_.checkpointed) hooks_.checkpointed(record_.series);
 }
 

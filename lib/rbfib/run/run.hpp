@@ -104,6 +104,10 @@ class Run {
   Run(const std::string& text, const std::string& origin, Options options, Hooks hooks);
   /// The same for a scene already read (its text: scene.source).
   Run(scene::Scene scene, Options options, Hooks hooks);
+  /// A coupled step built by the caller (a setup no scene file describes, e.g. Chapter 3's
+  /// periodic Stokes runs), with `source`, the text that describes it, in the scene's place: the
+  /// checkpoint restores only into a run of the same text.
+  Run(std::string source, sim::ImmersedBoundary ib, Options options, Hooks hooks);
 
   /// Steps until the run's end, the sitting's end, `until` or a numerical stop; returns where it
   /// stands. A run already ended returns at once.
@@ -111,7 +115,9 @@ class Run {
 
   sim::ImmersedBoundary& ib() { return ib_; }
   const sim::ImmersedBoundary& ib() const { return ib_; }
-  const scene::Scene& scene() const { return scene_; }
+  /// The scene (InputError for a run built without one).
+  const scene::Scene& scene() const;
+  const std::string& source() const { return source_; }
   const SeriesSet& series() const { return record_.series; }
   /// The series to add to between sittings (the next checkpoint keeps what is added).
   SeriesSet& series() { return record_.series; }
@@ -123,8 +129,10 @@ class Run {
   void checkpoint();
 
  private:
+  void start();
   void sample(const sim::IbStepReport* report);
-  scene::Scene scene_;  // its text (scene_.source) is what the checkpoint must match
+  std::optional<scene::Scene> scene_;
+  std::string source_;  // what the checkpoint must match (a scene's text)
   Options options_;
   Hooks hooks_;
   sim::ImmersedBoundary ib_;

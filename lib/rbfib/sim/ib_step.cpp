@@ -27,36 +27,52 @@ std::array<Box, 3> component_boxes(const MacOperators& ops) {
 }
 }  // namespace
 
-const char* to_string(Coupling c) { return c == Coupling::seed ? "seed (a)-(g), first order" : "midpoint, second order"; }
+const char* to_string(Coupling c) {
+  switch (c) {
+    case Coupling::seed: return "seed (a)-(g), first order";
+    case Coupling::midpoint: return "midpoint, second order";
+    case Coupling::forward_euler: return "forward Euler (Chapter 3, eq. 87)";
+  }
+  return "?";
+}
 
 ImmersedBoundary::ImmersedBoundary(const MacGrid& grid, FluidParameters fluid, NavierStokesOptions options,
                                    BoundaryVelocity boundary, IbOptions ib)
-    : ns_(grid, fluid, std::move(options), std::move(boundary)),
-      ib_(component_boxes(ns_.operators()), ib.kernel),
+    : ImmersedBoundary(std::make_unique<NavierStokesStep>(grid, fluid, std::move(options), std::move(boundary)), std::move(ib)) {}
+
+ImmersedBoundary::ImmersedBoundary(std::unique_ptr<FluidStep> fluid, IbOptions ib)
+    : fluid_(std::move(fluid)),
+      ib_(component_boxes(fluid_->operators()), ib.kernel),
       options_(std::move(ib)) {
-  require(grid.dims == 3, "grid.dims", grid.dims, "the immersed-boundary step needs a 3D grid");
-  require(options_.coupling == Coupling::seed || ns_.options().integrator == TimeIntegrator::peskin_two_stage,
-          "ib.coupling", to_string(options_.coupling), "needs Peskin's two-stage fluid scheme (its midpoint velocity)");
-  state_ = ns_.zero_state(0.0);
+  require(fluid_->grid().dims == 3, "grid.dims", fluid_->grid().dims, "the immersed-boundary step needs a 3D grid");
+  require(options_.coupling != Coupling::midpoint || fluid_->has_midpoint_velocity(), "ib.coupling", to_string(options_.coupling),
+          "needs Peskin's two-stage fluid scheme (its midpoint velocity), not " + fluid_->name());
+  if (!options_.body_force_density[0].empty())
+    for (int a = 0; a < 3; ++a)
+      require(index_t(options_.body_force_density[a].size()) == fluid_->operators().component_box(a).size(),
+              "ib.body_force_density[" + to_text(a) + "].size", options_.body_force_density[a].size(),
+              "must be the number of faces of velocity component " + to_text(a) + " (" +
+                  to_text(fluid_->operators().component_box(a).size()) + ")");
   const AdaptiveStep& a = options_.adaptive;
   if (a.enabled) {
     require(std::isfinite(a.dt_min) && a.dt_min > 0, "ib.adaptive.dt_min", a.dt_min, "must be positive and finite (s)");
     require(a.max_level >= 0 && a.max_level <= 30, "ib.adaptive.max_level", a.max_level, "must lie in [0, 30]");
     require(a.grow_after >= 1, "ib.adaptive.grow_after", a.grow_after, "must be at least 1 step");
-    const double k = std::log2(ns_.options().dt / a.dt_min);
+    const double k = std::log2(fluid_->dt() / a.dt_min);
     level_ = int(std::lround(k));
-    require(std::abs(k - level_) < 1e-9 && level_ >= 0 && level_ <= a.max_level, "fluid.dt", ns_.options().dt,
+    require(std::abs(k - level_) < 1e-9 && level_ >= 0 && level_ <= a.max_level, "fluid.dt", fluid_->dt(),
             "must be 2^k dt_min (dt_min = " + to_text(a.dt_min) + " s) with k in [0, " + to_text(a.max_level) + "]");
   }
 }
 
 ImmersedBoundary::Carried ImmersedBoundary::carried() const {
   Carried c;
-  c.fluid = state_;
-  for (const auto& b : batches_) c.batches.push_back(b->batch().state().storage());
-  for (const auto& q : points_) c.points.push_back(q->points().X);
+  c.fluid = fluid_->state();
+  for (const auto* b : batches_) c.batches.push_back(b->batch().state().storage());
+  for (const auto* q : points_) c.points.push_back(q->points().X);
+  for (const auto* q : shells_) c.shells.push_back(q->shell().X);
   c.steps = steps_;
-  c.dt = ns_.options().dt;
+  c.dt = fluid_->dt();
   c.level = level_;
   c.allowing = allowing_;
   return c;
@@ -67,31 +83,38 @@ void ImmersedBoundary::restore(const Carried& c) {
           "must equal this setup's " + to_text(batches_.size()));
   require(c.points.size() == points_.size(), "checkpoint: point sets", c.points.size(),
           "must equal this setup's " + to_text(points_.size()));
+  require(c.shells.size() == shells_.size(), "checkpoint: LDSM shells", c.shells.size(),
+          "must equal this setup's " + to_text(shells_.size()));
+  const FluidState& now = fluid_->state();
   for (int a = 0; a < 3; ++a)
-    require(c.fluid.u[a].size() == state_.u[a].size(), "checkpoint: velocity component " + to_text(a) + " size",
-            c.fluid.u[a].size(), "must equal this grid's " + to_text(state_.u[a].size()));
-  require(c.fluid.p.size() == state_.p.size(), "checkpoint: pressure size", c.fluid.p.size(),
-          "must equal this grid's " + to_text(state_.p.size()));
+    require(c.fluid.u[a].size() == now.u[a].size(), "checkpoint: velocity component " + to_text(a) + " size",
+            c.fluid.u[a].size(), "must equal this grid's " + to_text(now.u[a].size()));
+  require(c.fluid.p.size() == now.p.size(), "checkpoint: pressure size", c.fluid.p.size(),
+          "must equal this grid's " + to_text(now.p.size()));
   for (std::size_t b = 0; b < batches_.size(); ++b)
     require(c.batches[b].size() == batch(index_t(b)).state().storage().size(), "checkpoint: batch " + to_text(b) + " size",
             c.batches[b].size(), "must equal this setup's " + to_text(batch(index_t(b)).state().storage().size()));
   for (std::size_t p = 0; p < points_.size(); ++p)
     require(c.points[p].size() == points(index_t(p)).X.size(), "checkpoint: point set " + to_text(p) + " size",
             c.points[p].size(), "must equal this setup's " + to_text(points(index_t(p)).X.size()));
+  for (std::size_t q = 0; q < shells_.size(); ++q)
+    require(c.shells[q].size() == shells_[q]->shell().X.size(), "checkpoint: LDSM shell " + to_text(q) + " size",
+            c.shells[q].size(), "must equal this setup's " + to_text(shells_[q]->shell().X.size()));
   require(std::isfinite(c.dt) && c.dt > 0, "checkpoint: dt", c.dt, "must be positive");
-  state_ = c.fluid;
+  fluid_->state() = c.fluid;
+  for (std::size_t q = 0; q < shells_.size(); ++q) shells_[q]->shell().X = c.shells[q];
   for (std::size_t b = 0; b < batches_.size(); ++b) batch(index_t(b)).state().storage() = c.batches[b];
   for (std::size_t p = 0; p < points_.size(); ++p) points_[p]->points().X = c.points[p];
   steps_ = c.steps;
   level_ = c.level;
   allowing_ = c.allowing;
-  ns_.set_dt(c.dt);
+  fluid_->set_dt(c.dt);
 }
 
 void ImmersedBoundary::set_level(int level) {
   level_ = level;
   allowing_ = 0;
-  ns_.set_dt(std::ldexp(options_.adaptive.dt_min, level));
+  fluid_->set_dt(std::ldexp(options_.adaptive.dt_min, level));
 }
 
 IbStepReport ImmersedBoundary::step() {
@@ -112,7 +135,7 @@ IbStepReport ImmersedBoundary::step() {
       const int fits = int(std::floor(std::log2(no.bound / a.dt_min)));
       const int level = std::min(fits, level_ - 1);
       if (level < 0)
-        throw NumericalError(Cause::stopping_condition, "immersed-boundary step " + to_text(steps_) + " at t = " + to_text(state_.t) +
+        throw NumericalError(Cause::stopping_condition, "immersed-boundary step " + to_text(steps_) + " at t = " + to_text(time()) +
                              " s: stopping condition (eq. 5.4) violated even at dt_min = " + to_text(a.dt_min) +
                              " s: (1/4) sqrt(h rho / ||f||_inf) = " + to_text(no.bound) + " s (the state before this step is kept)");
       set_level(level);
@@ -121,48 +144,57 @@ IbStepReport ImmersedBoundary::step() {
   }
 }
 
-index_t ImmersedBoundary::add(cells::Batch batch) {
-  batches_.push_back(std::make_unique<CellBatchSet>(std::move(batch)));
-  return index_t(batches_.size()) - 1;
-}
+index_t ImmersedBoundary::add(cells::Batch batch) { return keep(std::make_unique<CellBatchSet>(std::move(batch)), batches_); }
 
 index_t ImmersedBoundary::add(TetheredPoints p) {
+  if (p.frame)
+    for (const TetheredPointSet* q : points_)
+      require(!q->points().frame, "tethered points '" + p.name + "': frame", "true",
+              "only one point set may hold the frame ('" + q->points().name + "' does)");
   // The seed's coupling holds the springs at X^n; the midpoint coupling at X^{n+1/2}.
-  points_.push_back(std::make_unique<TetheredPointSet>(std::move(p), options_.coupling == Coupling::midpoint));
-  return index_t(points_.size()) - 1;
+  return keep(std::make_unique<TetheredPointSet>(std::move(p), options_.coupling == Coupling::midpoint), points_);
 }
+
+index_t ImmersedBoundary::add(LdsmShell shell) { return keep(std::make_unique<LdsmShellSet>(std::move(shell)), shells_); }
 
 IbStepReport ImmersedBoundary::attempt() {
   IbStepReport r;
-  const double dt = ns_.options().dt;
+  const double dt = fluid_->dt();
   r.dt = dt;
-  const double t = state_.t;
-  const bool midpoint = options_.coupling == Coupling::midpoint;
-  // Keep X^n (and U): the whole Lagrangian state is restored on failure.
+  const double t = time();
+  const Coupling coupling = options_.coupling;
+  // Keep X^n (and U): the whole Lagrangian state is restored on failure; the fluid's next state
+  // goes into its other buffer and is accepted only at the end.
   for_each_set([](LagrangianSet& s) { s.save(); });
-  bool fluid_stepped = false;
   try {
     auto t0 = clock_type::now();
-    // (a) U^n = I u^n at X^n; (b) X* = X^n + dt U^n (midpoint: X^{n+1/2} = X^n + dt/2 U^n).
-    const double predict = midpoint ? 0.5 * dt : dt;
+    // (a) U^n = I u^n at X^n; (b) X* = X^n + dt U^n (midpoint: X^{n+1/2} = X^n + dt/2 U^n;
+    // forward Euler: neither, the forces act at X^n).
     for_each_set([&](LagrangianSet& s) {
-      s.interpolate_start(ib_, state_.u);
-      s.predict(predict);
+      s.locate(ib_);
+      if (coupling == Coupling::forward_euler) return;
+      s.interpolate_start(ib_, fluid_->state().u);
+      s.predict(coupling == Coupling::midpoint ? 0.5 * dt : dt);
     });
     r.seconds_interpolation += seconds_since(t0);
     // (c) F^{n+1} at X* (sample sites), with U^n for dissipation.
-    for_each_set([&](LagrangianSet& s) { r.elastic_energy += s.compute_force(); });
+    for_each_set([&](LagrangianSet& s) {
+      r.elastic_energy += s.compute_force();
+      r.seconds_force_products += s.seconds_force_products();
+    });
     r.seconds_forces = seconds_since(t0);
     // (d) f^{n+1} = S F^{n+1} from where the forces act, summed over the sets, plus the body force.
-    for (int a = 0; a < 3; ++a)
-      f_[a].assign(static_cast<std::size_t>(ns_.operators().component_box(a).size()), options_.body_force[a]);
+    const MacOperators& ops = fluid_->operators();
+    for (int a = 0; a < 3; ++a) f_[a].assign(static_cast<std::size_t>(ops.component_box(a).size()), options_.body_force[a]);
     for_each_set([&](LagrangianSet& s) { s.spread(ib_, options_.spreading, f_, scratch_); });
+    for (int a = 0; a < 3; ++a)
+      if (!options_.body_force_density[a].empty()) blas::axpy(1.0, options_.body_force_density[a], f_[a]);
     r.seconds_spreading = seconds_since(t0);
     // Eq. 5.4: dt <= (1/4) sqrt(h rho / ||f||_inf).
     for (int a = 0; a < 3; ++a) r.max_force_density = std::max(r.max_force_density, blas::norm_inf(f_[a]));
-    const MacGrid& g = ns_.grid();
+    const MacGrid& g = fluid_->grid();
     const double h = std::min({g.h(0), g.h(1), g.h(2)});
-    r.dt_bound = r.max_force_density > 0 ? 0.25 * std::sqrt(h * ns_.fluid().density / r.max_force_density)
+    r.dt_bound = r.max_force_density > 0 ? 0.25 * std::sqrt(h * fluid_->density() / r.max_force_density)
                                          : std::numeric_limits<double>::infinity();
     if (!std::isfinite(r.max_force_density)) throw NumericalError(Cause::non_finite, "non-finite spread force density");
     if (options_.adaptive.enabled && dt > r.dt_bound) throw Refused{r.dt_bound};
@@ -170,30 +202,30 @@ IbStepReport ImmersedBoundary::attempt() {
       throw NumericalError(Cause::stopping_condition, "stopping condition (eq. 5.4) violated: ||f||_inf = " + to_text(r.max_force_density) +
                                                           " dyn/cm^3, dt = " + to_text(dt) + " s > (1/4) sqrt(h rho / ||f||_inf) = " +
                                                           to_text(r.dt_bound) + " s");
-    // (e) the fluid step.
-    backup_ = state_;
-    fluid_stepped = true;
-    r.fluid = ns_.step(state_, &f_);
+    // (e) the fluid step, into the fluid's other buffer.
+    r.fluid = fluid_->step(&f_);
+    const FluidState& next = fluid_->next();
     for (int a = 0; a < 3; ++a)
-      if (!blas::all_finite(state_.u[a]))
+      if (!blas::all_finite(next.u[a]))
         throw NumericalError(Cause::non_finite, "non-finite fluid velocity (component " + to_text(a) + ")");
     const double cell_volume = g.h(0) * g.h(1) * g.h(2);
     for (int a = 0; a < 3; ++a) {
-      r.max_velocity = std::max(r.max_velocity, blas::norm_inf(state_.u[a]));
-      r.kinetic_energy += 0.5 * ns_.fluid().density * blas::dot(state_.u[a], state_.u[a]) * cell_volume;
+      r.max_velocity = std::max(r.max_velocity, blas::norm_inf(next.u[a]));
+      r.kinetic_energy += 0.5 * fluid_->density() * blas::dot(next.u[a], next.u[a]) * cell_volume;
     }
     r.seconds_fluid = seconds_since(t0);  // with its checks and diagnostics
     // (f) U^{n+1} = I u^{n+1} at X^n (midpoint: U^{n+1/2} = I u^{n+1/2} at X^{n+1/2}, sorted once more);
-    // (g) X^{n+1} = X^n + dt U.
-    const VectorField& u_final = midpoint ? ns_.midpoint_velocity() : state_.u;
-    for_each_set([&](LagrangianSet& s) {
-      s.interpolate_end(ib_, u_final, midpoint);
-      s.update(dt);
-    });
+    const bool midpoint = coupling == Coupling::midpoint;
+    const VectorField& u_final = midpoint ? fluid_->midpoint_velocity() : next.u;
+    for_each_set([&](LagrangianSet& s) { s.interpolate_end(ib_, u_final, midpoint); });
     r.seconds_interpolation += seconds_since(t0);
+    // (g) X^{n+1} = X^n + dt (U + u_c), u_c the frame's velocity (eq. 95) or zero.
+    for (const TetheredPointSet* p : points_)
+      if (p->points().frame) r.frame_velocity = p->frame_velocity(dt);
+    for_each_set([&](LagrangianSet& s) { s.update(dt, r.frame_velocity); });
+    r.seconds_update = seconds_since(t0);
   } catch (...) {
     for_each_set([](LagrangianSet& s) { s.restore(); });
-    if (fluid_stepped) state_ = backup_;
     try {
       throw;
     } catch (const Refused&) {
@@ -206,6 +238,7 @@ IbStepReport ImmersedBoundary::attempt() {
                                               " (the state before this step is kept)");
     }
   }
+  fluid_->accept();
   ++steps_;
   return r;
 }

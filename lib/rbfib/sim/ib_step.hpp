@@ -20,6 +20,9 @@
 //   U^n = I u^n at X^n;  X^{n+1/2} = X^n + (dt/2) U^n;  F^{n+1/2} at X^{n+1/2}, spread from there;
 //   the two fluid stages with that f (giving u^{n+1/2} and u^{n+1});
 //   U^{n+1/2} = I u^{n+1/2} at X^{n+1/2};  X^{n+1} = X^n + dt U^{n+1/2}.
+// Coupling::forward_euler, Chapter 3's time update (Sec. 3.3, eq. 87), for Stokes flow:
+//   F^n at X^n; f^n = S F^n from X^n; u^{n+1} = the fluid step with f^n; U = I u^{n+1} at X^n;
+//   X^{n+1} = X^n + dt U (the capillary's frame, eqs. 94-95: + dt u_c for every set).
 // Dissipation uses U^n in both (the velocity interpolated at the start of the step).
 // Tethered points (eq. 2.10) are not predicted in the seed's coupling: their force
 // F = -k (X^n - X') - eta U^n is spread from X^n (the midpoint coupling: from X^{n+1/2}). With
@@ -35,9 +38,11 @@
 // raises NumericalError naming the step, the time and the cause, with every state (fluid, cells)
 // left as it was before the step: the last good state survives. With the adaptive step
 // (AdaptiveStep below) a refusal by eq. 5.4 instead retakes the step at once with a smaller dt.
+// The Eulerian side is any FluidStep (fluid/fluid_step.hpp): Navier-Stokes, or periodic Stokes,
+// steady or unsteady; its state is double-buffered, so a refused or failed step copies nothing.
 // Units (CGS): positions cm, velocities cm/s, forces dyn, force densities dyn/cm^3, time s.
 #include "rbfib/cells/batch.hpp"
-#include "rbfib/fluid/navier_stokes.hpp"
+#include "rbfib/fluid/fluid_step.hpp"
 #include "rbfib/ib/interaction.hpp"
 #include "rbfib/sim/lagrangian.hpp"
 
@@ -47,7 +52,7 @@
 
 namespace rbfib::sim {
 
-enum class Coupling { seed, midpoint };
+enum class Coupling { seed, midpoint, forward_euler };
 const char* to_string(Coupling c);
 
 /// The adaptive step of the seed's own code: dt = 2^k dt_min for a level k in [0, max_level],
@@ -72,6 +77,10 @@ struct IbOptions {
   /// A uniform body force density added to the spread force every step (dyn/cm^3), e.g. a mean
   /// pressure gradient driving a channel or a periodic box.
   std::array<double, 3> body_force{0, 0, 0};
+  /// A body force density that varies in space (dyn/cm^3, one value per MAC face of each
+  /// component; empty: none), added after the spread forces (e.g. the capillary's pressure
+  /// gradient inside its tube and the balancing one outside, Chapter 3 Sec. 5.1).
+  VectorField body_force_density;
   AdaptiveStep adaptive;
 };
 
@@ -84,14 +93,20 @@ struct IbStepReport {
   double max_velocity = 0;       ///< max |u_a| after the step (cm/s)
   double kinetic_energy = 0;     ///< (rho / 2) sum |u|^2 h^3 after the step (erg)
   double elastic_energy = 0;     ///< the cells' energy at the forces' positions (erg)
-  double seconds_interpolation = 0, seconds_forces = 0, seconds_spreading = 0, seconds_fluid = 0;
+  /// The uniform velocity added throughout the domain by a frame set (Chapter 3 eq. 95; cm/s).
+  std::array<double, 3> frame_velocity{0, 0, 0};
+  double seconds_interpolation = 0, seconds_forces = 0, seconds_spreading = 0, seconds_fluid = 0, seconds_update = 0;
+  double seconds_force_products = 0;  ///< the cells' dense products (part of seconds_forces)
   StepStats fluid;
 };
 
 class ImmersedBoundary {
  public:
+  /// The step over the Navier-Stokes solver of Sec. 2.1.
   ImmersedBoundary(const MacGrid& grid, FluidParameters fluid, NavierStokesOptions options, BoundaryVelocity boundary,
                    IbOptions ib);
+  /// The step over any fluid (periodic Stokes, steady or unsteady; Navier-Stokes).
+  ImmersedBoundary(std::unique_ptr<FluidStep> fluid, IbOptions ib);
 
   /// Adds a batch of cells; returns its index. The batch's velocities are set at the next step.
   index_t add(cells::Batch batch);
@@ -100,15 +115,21 @@ class ImmersedBoundary {
   index_t add(TetheredPoints points);
   const TetheredPoints& points(index_t p) const { return points_.at(p)->points(); }
   index_t point_sets() const { return index_t(points_.size()); }
+  /// Adds an LDSM shell; returns its index. Throws InputError naming the field for bad input.
+  index_t add(LdsmShell shell);
+  const LdsmShellSet& shell(index_t s) const { return *shells_.at(s); }
+  index_t shells() const { return index_t(shells_.size()); }
+  const CellBatchSet& batch_set(index_t b) const { return *batches_.at(b); }
   cells::Batch& batch(index_t b) { return batches_.at(b)->batch(); }
   const cells::Batch& batch(index_t b) const { return batches_.at(b)->batch(); }
   index_t batches() const { return index_t(batches_.size()); }
 
-  FluidState& fluid_state() { return state_; }
-  const FluidState& fluid_state() const { return state_; }
-  const NavierStokesSolver& fluid() const { return ns_; }
+  FluidState& fluid_state() { return fluid_->state(); }
+  const FluidState& fluid_state() const { return fluid_->state(); }
+  const FluidStep& fluid() const { return *fluid_; }
   const ib::Interaction& interaction() const { return ib_; }
-  double time() const { return state_.t; }
+  ib::Interaction& interaction() { return ib_; }
+  double time() const { return fluid_->state().t; }
   long step_count() const { return steps_; }
 
   /// Everything a step carries over to the next, for checkpoints: the fluid state, each batch's
@@ -120,6 +141,7 @@ class ImmersedBoundary {
     FluidState fluid;
     std::vector<dvec> batches;  ///< each batch's state storage (n_d x 6N, column-major)
     std::vector<dvec> points;   ///< each point set's positions
+    std::vector<std::vector<double>> shells;  ///< each LDSM shell's vertices
     long steps = 0;
     double dt = 0;
     int level = 0, allowing = 0;
@@ -128,11 +150,11 @@ class ImmersedBoundary {
   /// Restores a carried state; throws InputError naming what does not match this setup.
   void restore(const Carried& c);
 
-  /// One step (a)-(g). Throws NumericalError (state unchanged) as described above; with the
+  /// One step of the coupling. Throws NumericalError (state unchanged) as described above; with the
   /// adaptive step, eq. 5.4 stops the run only when even dt_min violates it.
   IbStepReport step();
   /// The step size of the next step (s).
-  double dt() const { return ns_.options().dt; }
+  double dt() const { return fluid_->dt(); }
 
   /// Per-cell diagnostics of batch b from the last step's force call, at the positions the forces
   /// were computed at (X* of (b), or X^{n+1/2}): energy, dissipation, area, volume, centroid.
@@ -146,8 +168,13 @@ class ImmersedBoundary {
   /// Calls fn on every Lagrangian set: the cell batches, then the tethered point sets.
   template <class F>
   void for_each_set(F&& fn) {
-    for (auto& b : batches_) fn(static_cast<LagrangianSet&>(*b));
-    for (auto& p : points_) fn(static_cast<LagrangianSet&>(*p));
+    for (auto& s : sets_) fn(*s);
+  }
+  template <class T>
+  index_t keep(std::unique_ptr<T> set, std::vector<T*>& kind) {
+    kind.push_back(set.get());
+    sets_.push_back(std::move(set));
+    return index_t(kind.size()) - 1;
   }
   /// One attempt at the step with the current dt: the coupling; throws Refused (state restored)
   /// when the adaptive step is on and eq. 5.4 refuses it.
@@ -157,12 +184,13 @@ class ImmersedBoundary {
   };
   void set_level(int level);
 
-  NavierStokesSolver ns_;
+  std::unique_ptr<FluidStep> fluid_;
   ib::Interaction ib_;
   IbOptions options_;
-  FluidState state_, backup_;
-  std::vector<std::unique_ptr<CellBatchSet>> batches_;
-  std::vector<std::unique_ptr<TetheredPointSet>> points_;
+  std::vector<std::unique_ptr<LagrangianSet>> sets_;  // in the order added: the order of spreading
+  std::vector<CellBatchSet*> batches_;
+  std::vector<TetheredPointSet*> points_;
+  std::vector<LdsmShellSet*> shells_;
   VectorField f_, scratch_;  // the force density; a scratch field for the non-binned spreadings
   long steps_ = 0;
   int level_ = 0, allowing_ = 0;  // adaptive step: current level, consecutive steps allowing a doubling

@@ -2,6 +2,7 @@
 
 #include "rbfib/core/error.hpp"
 #include "rbfib/linalg/blas.hpp"
+#include "rbfib/mechanics/ldsm.hpp"
 
 #include <thrust/copy.h>
 #include <thrust/device_ptr.h>
@@ -17,6 +18,18 @@ index_t first_non_finite(const double* x, index_t n) {
   return bad == begin + n ? -1 : index_t(bad - begin);
 }
 index_t first_non_finite(const dvec& x) { return first_non_finite(ptr(x), index_t(x.size())); }
+
+bool moving(const std::array<double, 3>& u_frame) { return u_frame[0] != 0 || u_frame[1] != 0 || u_frame[2] != 0; }
+
+/// X = X0 + c (U + u_frame[d]) over 3 blocks of `block` values (component-major), on the device.
+void advance_in_frame(double* X, const double* X0, const double* U, double c, const std::array<double, 3>& u_frame,
+                      index_t block) {
+  const double fx = u_frame[0], fy = u_frame[1], fz = u_frame[2];
+  for_each_index(3 * block, [=] RBFIB_HD(index_t i) {
+    const double f = i < block ? fx : (i < 2 * block ? fy : fz);
+    X[i] = X0[i] + c * (U[i] + f);
+  });
+}
 }  // namespace
 
 void interpolate_at(ib::Interaction& ib, const ib::SortedPoints& s, const VectorField& u, dvec& U, const std::string& who) {
@@ -42,7 +55,7 @@ void CellBatchSet::save() { saved_ = batch_.state().storage(); }
 
 void CellBatchSet::restore() { batch_.state().storage() = saved_; }
 
-void CellBatchSet::interpolate_start(ib::Interaction& ib, const VectorField& u) {
+void CellBatchSet::locate(ib::Interaction& ib) {
   // X^n, read in place from the state, checked finite, then sorted once.
   const index_t nd = batch_.type().n_data(), N = batch_.size(), n = N * nd;
   const double* X = ptr(batch_.state().storage());
@@ -51,11 +64,12 @@ void CellBatchSet::interpolate_start(ib::Interaction& ib, const VectorField& u) 
     throw NumericalError(Cause::non_finite, name() + ", cell " + to_text((k % n) / nd) + ": non-finite position at data site " +
                                                to_text(k % nd) + " (coordinate " + "xyz"[k / n] + ")");
   ib.sort(X, n, start_);
-  interpolate_at(ib, start_, u, U_, name());
 }
 
+void CellBatchSet::interpolate_start(ib::Interaction& ib, const VectorField& u) { interpolate_at(ib, start_, u, U_, name()); }
+
 double CellBatchSet::compute_force() {
-  cells::compute_forces(batch_, forces_);
+  cells::compute_forces(batch_, forces_, &timings_);
   return forces_.energy;
 }
 
@@ -68,11 +82,15 @@ void CellBatchSet::interpolate_end(ib::Interaction& ib, const VectorField& u, bo
   interpolate_at(ib, start_, u, U_, name());
 }
 
-void CellBatchSet::advance(double c) {
+void CellBatchSet::advance(double c, const std::array<double, 3>* u_frame) {
   const auto n = static_cast<std::ptrdiff_t>(U_.size());
   X_.resize(U_.size());
-  thrust::copy(saved_.begin(), saved_.begin() + n, X_.begin());  // X^n
-  blas::axpy(c, U_, X_);
+  if (u_frame && moving(*u_frame)) {
+    advance_in_frame(ptr(X_), ptr(saved_), ptr(U_), c, *u_frame, index_t(n / 3));
+  } else {
+    thrust::copy(saved_.begin(), saved_.begin() + n, X_.begin());  // X^n
+    blas::axpy(c, U_, X_);
+  }
   auto state = batch_.state().storage().begin();
   thrust::copy(X_.begin(), X_.end(), state);
   thrust::copy(U_.begin(), U_.end(), state + n);  // the velocity block
@@ -90,10 +108,9 @@ TetheredPointSet::TetheredPointSet(TetheredPoints p, bool predicted) : points_(s
           "must be finite");
 }
 
-void TetheredPointSet::interpolate_start(ib::Interaction& ib, const VectorField& u) {
-  ib.sort(ptr(X0_), index_t(X0_.size()) / 3, start_);
-  interpolate_at(ib, start_, u, U_, name());
-}
+void TetheredPointSet::locate(ib::Interaction& ib) { ib.sort(ptr(X0_), index_t(X0_.size()) / 3, start_); }
+
+void TetheredPointSet::interpolate_start(ib::Interaction& ib, const VectorField& u) { interpolate_at(ib, start_, u, U_, name()); }
 
 void TetheredPointSet::predict(double c) {
   if (predicted_) blas::axpy(c, U_, points_.X);
@@ -104,7 +121,7 @@ double TetheredPointSet::compute_force() {
   F_ = points_.X;
   blas::axpy(-1.0, points_.anchors, F_);
   blas::scale(-points_.k, F_);
-  blas::axpy(-points_.eta, U_, F_);
+  if (points_.eta != 0) blas::axpy(-points_.eta, U_, F_);  // (Chapter 3's forward Euler has no U^n)
   return 0;
 }
 
@@ -120,9 +137,103 @@ void TetheredPointSet::interpolate_end(ib::Interaction& ib, const VectorField& u
   interpolate_at(ib, start_, u, U_, name());
 }
 
-void TetheredPointSet::update(double dt) {
+void TetheredPointSet::update(double dt, const std::array<double, 3>& u_frame) {
   points_.X = X0_;
   blas::axpy(dt, U_, points_.X);
+  if (!moving(u_frame)) return;
+  // Eqs. 94-95 as written: X^ = X^n + dt U, then X^{n+1} = X^ + dt u_c.
+  const index_t n = index_t(X0_.size() / 3);
+  for (int d = 0; d < 3; ++d) {
+    double* X = ptr(points_.X) + d * n;
+    const double c = dt * u_frame[d];
+    for_each_index(n, [=] RBFIB_HD(index_t i) { X[i] += c; });
+  }
+}
+
+std::array<double, 3> TetheredPointSet::frame_velocity(double dt) const {
+  // X^ = X^n + dt U (eq. 94), then u_c = (1 / (n dt)) sum (X' - X^) per component (eq. 95).
+  const std::vector<double> X0(X0_.begin(), X0_.end()), U(U_.begin(), U_.end()), Z(points_.anchors.begin(), points_.anchors.end());
+  const std::size_t n = X0.size() / 3;
+  std::array<double, 3> uc{0, 0, 0};
+  for (int d = 0; d < 3; ++d) {
+    double sum = 0;
+    for (std::size_t q = 0; q < n; ++q) {
+      const std::size_t i = d * n + q;
+      sum += Z[i] - (X0[i] + dt * U[i]);
+    }
+    uc[d] = sum / (double(n) * dt);
+  }
+  return uc;
+}
+
+// ---- LDSM shells ----------------------------------------------------------------------------
+
+LdsmShellSet::LdsmShellSet(LdsmShell shell) : shell_(std::move(shell)) {
+  const std::string field = name();
+  const std::size_t n = shell_.reference.size() / 3;
+  require(shell_.reference.size() % 3 == 0 && n >= 4, field + ": reference size", shell_.reference.size(),
+          "must be 3n with n >= 4 vertices");
+  require(shell_.X.size() == shell_.reference.size(), field + ": positions size", shell_.X.size(), "must equal the reference's size");
+  require(!shell_.triangles.empty(), field + ": triangles", 0, "must not be empty");
+  for (const surface::Triangle& t : shell_.triangles)
+    for (index_t v : t) require(v >= 0 && std::size_t(v) < n, field + ": triangle vertex", v, "must lie in [0, " + to_text(n) + ")");
+  require(!shell_.energies.empty(), field + ": energies", 0, "must name at least one energy");
+  for (double x : shell_.X) require(std::isfinite(x), field + ": positions", x, "must be finite");
+}
+
+void LdsmShellSet::locate(ib::Interaction& ib) {
+  const std::vector<double>& X = shell_.X;
+  for (std::size_t i = 0; i < X.size(); ++i)
+    if (!std::isfinite(X[i]))
+      throw NumericalError(Cause::non_finite, name() + ": non-finite position at vertex " + to_text(i % (X.size() / 3)));
+  Xd_.resize(X.size());
+  thrust::copy(X.begin(), X.end(), Xd_.begin());
+  ib.sort(ptr(Xd_), index_t(X.size() / 3), at_);
+}
+
+void LdsmShellSet::interpolate_start(ib::Interaction& ib, const VectorField& u) {
+  interpolate_at(ib, at_, u, Ud_, name());
+  U_.assign(Ud_.begin(), Ud_.end());
+}
+
+void LdsmShellSet::predict(double c) {
+  if (c == 0) return;
+  for (std::size_t i = 0; i < shell_.X.size(); ++i) shell_.X[i] = X0_[i] + c * U_[i];
+}
+
+double LdsmShellSet::compute_force() {
+  mechanics::LdsmResult r = mechanics::ldsm_forces(shell_.name, shell_.triangles, shell_.reference, shell_.X, shell_.energies);
+  F_ = std::move(r.F);
+  return r.energy;
+}
+
+void LdsmShellSet::spread(ib::Interaction& ib, ib::Spreading algorithm, VectorField& f, VectorField& scratch) {
+  Fd_.resize(F_.size());
+  thrust::copy(F_.begin(), F_.end(), Fd_.begin());
+  const bool moved = shell_.X != X0_;  // predicted: spread from X*, sorted anew
+  if (moved || algorithm != ib::Spreading::binned) {
+    thrust::copy(shell_.X.begin(), shell_.X.end(), Xd_.begin());
+    spread_into(ib, algorithm, Xd_, Fd_, at_, f, scratch);
+    return;
+  }
+  ib.spread(at_, ptr(Fd_), f, true);  // from X^n, sorted once for the step
+}
+
+void LdsmShellSet::interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) {
+  if (at_predicted) {
+    thrust::copy(shell_.X.begin(), shell_.X.end(), Xd_.begin());
+    ib.sort(ptr(Xd_), index_t(shell_.X.size() / 3), at_);
+  } else if (shell_.X != X0_) {
+    thrust::copy(X0_.begin(), X0_.end(), Xd_.begin());  // back to X^n
+    ib.sort(ptr(Xd_), index_t(X0_.size() / 3), at_);
+  }
+  interpolate_at(ib, at_, u, Ud_, name());
+  U_.assign(Ud_.begin(), Ud_.end());
+}
+
+void LdsmShellSet::update(double dt, const std::array<double, 3>& u_frame) {
+  const std::size_t n = X0_.size() / 3;
+  for (std::size_t i = 0; i < X0_.size(); ++i) shell_.X[i] = X0_[i] + dt * (moving(u_frame) ? U_[i] + u_frame[i / n] : U_[i]);
 }
 
 }  // namespace rbfib::sim

@@ -6,19 +6,27 @@
 //
 // One step of a set, in the seed's order:
 //   save()                  keep X^n (and what else the set carries) for a retake or a failure
-//   interpolate_start(u)    (a) U^n = I u^n at X^n (X^n sorted by grid cell once for the step)
+//   locate()                X^n checked finite and sorted by grid cell once for the step
+//   interpolate_start(u)    (a) U^n = I u^n at X^n
 //   predict(c)              (b) the positions forces are computed at, X* = X^n + c U^n
 //   compute_force()         (c) F at X* (the set's own law), returns its elastic energy (erg)
 //   spread(f)               (d) f += S F from where F acts
 //   interpolate_end(u)      (f) U = I u at X^n (the midpoint coupling: at X*)
-//   update(dt)              (g) X^{n+1} = X^n + dt U
+//   update(dt, u_frame)     (g) X^{n+1} = X^n + dt (U + u_frame), u_frame a uniform velocity
+//                           added throughout the domain (the capillary's frame, Chapter 3 eq. 95;
+//                           zero otherwise)
 //   restore()               put back what save() kept (the step was refused or failed)
+// Chapter 3's forward Euler (Sec. 3.3) skips (a) and (b): forces at X^n, X^{n+1} = X^n + dt U.
 // Units (CGS): positions cm, velocities cm/s, forces dyn, force densities dyn/cm^3.
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/grid/mac.hpp"
 #include "rbfib/ib/interaction.hpp"
+#include "rbfib/mechanics/energy.hpp"
+#include "rbfib/surface/triangulation.hpp"
 
+#include <array>
 #include <string>
+#include <vector>
 
 namespace rbfib::sim {
 
@@ -29,6 +37,7 @@ class LagrangianSet {
   virtual std::string name() const = 0;
   virtual void save() = 0;
   virtual void restore() = 0;
+  virtual void locate(ib::Interaction& ib) = 0;
   virtual void interpolate_start(ib::Interaction& ib, const VectorField& u) = 0;
   virtual void predict(double c) = 0;
   virtual double compute_force() = 0;
@@ -36,7 +45,9 @@ class LagrangianSet {
   virtual void spread(ib::Interaction& ib, ib::Spreading algorithm, VectorField& f, VectorField& scratch) = 0;
   /// at_predicted: interpolate at X* (sorted anew) rather than at X^n.
   virtual void interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) = 0;
-  virtual void update(double dt) = 0;
+  virtual void update(double dt, const std::array<double, 3>& u_frame) = 0;
+  /// Seconds of the last compute_force() spent in dense products (0 for a set without them).
+  virtual double seconds_force_products() const { return 0; }
 };
 
 /// U = I u at sorted points; throws NumericalError (non-finite) naming `who` when U is not finite.
@@ -56,22 +67,25 @@ class CellBatchSet final : public LagrangianSet {
   std::string name() const override { return "cell type '" + batch_.type().name() + "'"; }
   void save() override;
   void restore() override;
+  void locate(ib::Interaction& ib) override;
   void interpolate_start(ib::Interaction& ib, const VectorField& u) override;
-  void predict(double c) override { advance(c); }
+  void predict(double c) override { advance(c, nullptr); }
   double compute_force() override;
   void spread(ib::Interaction& ib, ib::Spreading algorithm, VectorField& f, VectorField& scratch) override;
   void interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) override;
-  void update(double dt) override { advance(dt); }
+  void update(double dt, const std::array<double, 3>& u_frame) override { advance(dt, &u_frame); }
+  double seconds_force_products() const override { return timings_.products(); }
 
   cells::Batch& batch() { return batch_; }
   const cells::Batch& batch() const { return batch_; }
   const cells::CellForces& forces() const { return forces_; }
 
  private:
-  /// X = X^n + c U, X^n from the saved state; written into the batch's state with U.
-  void advance(double c);
+  /// X = X^n + c (U + u_frame), X^n from the saved state; written into the batch's state with U.
+  void advance(double c, const std::array<double, 3>* u_frame);
   cells::Batch batch_;
   cells::CellForces forces_;
+  cells::ForceTimings timings_;
   dvec saved_;               // the whole state (X^n and U) at the start of a step
   ib::SortedPoints start_;   // X^n sorted once by grid cell: (a) and (f) interpolate there
   ib::SortedPoints sample_;  // the sample sites the forces are spread from
@@ -89,6 +103,10 @@ struct TetheredPoints {
   dvec anchors;  ///< X', 3n (cm)
   double k = 0;    ///< spring constant (dyn/cm)
   double eta = 0;  ///< damping (dyn s/cm)
+  /// The points hold the frame (the capillary of Chapter 3, eqs. 94-95): after each step the
+  /// uniform velocity u_c = (1 / (n dt)) sum_k (X'_k - X^_k), X^ = X^n + dt U (equal node areas),
+  /// is added throughout the domain, so that the points return to their anchors on average.
+  bool frame = false;
 };
 
 /// Tethered points as a Lagrangian set. `predicted`: whether the coupling evaluates the spring at
@@ -101,12 +119,15 @@ class TetheredPointSet final : public LagrangianSet {
   std::string name() const override { return "tethered points '" + points_.name + "'"; }
   void save() override { X0_ = points_.X; }
   void restore() override { points_.X = X0_; }
+  void locate(ib::Interaction& ib) override;
   void interpolate_start(ib::Interaction& ib, const VectorField& u) override;
   void predict(double c) override;
   double compute_force() override;
   void spread(ib::Interaction& ib, ib::Spreading algorithm, VectorField& f, VectorField& scratch) override;
   void interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) override;
-  void update(double dt) override;
+  void update(double dt, const std::array<double, 3>& u_frame) override;
+  /// The frame velocity u_c of eq. (95) after (f): (1 / (n dt)) sum_k (X'_k - (X^n_k + dt U_k)) (cm/s).
+  std::array<double, 3> frame_velocity(double dt) const;
 
   const TetheredPoints& points() const { return points_; }
   TetheredPoints& points() { return points_; }
@@ -116,6 +137,46 @@ class TetheredPointSet final : public LagrangianSet {
   bool predicted_;
   ib::SortedPoints start_, spread_;
   dvec X0_, U_, F_;  // X^n (also what a failure restores), velocities, spring forces
+};
+
+/// A shell whose forces are LDSM's (Chapter 3 eq. 66, the linear-element method the paper compares
+/// with): its n triangulated vertices carry the state, forces are computed on the flat triangles
+/// (every energy in one pass) and spread from the vertices, velocities interpolated at them.
+struct LdsmShell {
+  std::string name;
+  std::vector<surface::Triangle> triangles;
+  std::vector<double> reference;  ///< the reference vertices Z, n x 3 column-major (cm)
+  std::vector<double> X;          ///< the vertices now, n x 3 column-major (cm)
+  std::vector<mechanics::EnergyDensity> energies;
+};
+
+/// An LDSM shell as a Lagrangian set. Its forces and positions live on the host (the force loop is
+/// the host's); the interaction gets device copies.
+class LdsmShellSet final : public LagrangianSet {
+ public:
+  /// Throws InputError naming the field for mismatched sizes or non-finite positions.
+  explicit LdsmShellSet(LdsmShell shell);
+  std::string name() const override { return "LDSM shell '" + shell_.name + "'"; }
+  void save() override { X0_ = shell_.X; }
+  void restore() override { shell_.X = X0_; }
+  void locate(ib::Interaction& ib) override;
+  void interpolate_start(ib::Interaction& ib, const VectorField& u) override;
+  void predict(double c) override;
+  double compute_force() override;
+  void spread(ib::Interaction& ib, ib::Spreading algorithm, VectorField& f, VectorField& scratch) override;
+  void interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) override;
+  void update(double dt, const std::array<double, 3>& u_frame) override;
+
+  const LdsmShell& shell() const { return shell_; }
+  LdsmShell& shell() { return shell_; }
+  /// The forces of the last compute_force() at the vertices (dyn), n x 3.
+  const std::vector<double>& force() const { return F_; }
+
+ private:
+  LdsmShell shell_;
+  std::vector<double> X0_, F_, U_;  // X^n, forces, velocities (host)
+  dvec Xd_, Fd_, Ud_;               // device copies for the interaction
+  ib::SortedPoints at_;             // where the vertices are sorted (X^n, or X* once predicted)
 };
 
 }  // namespace rbfib::sim
