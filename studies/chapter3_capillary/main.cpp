@@ -22,8 +22,9 @@
 // h/3; the paper does not state its grid), t = 0.05 s, and the k_bend = 0 runs again on eta = 96
 // (spacing h/2), where dt = 1e-4 s loses every run near t = 7 ms and dt = 5e-5 s does not (table
 // runs_eta96; the reference's conventions: grid). At full scale each run keeps a checkpoint
-// DIR/run_<label>_eta<eta>.bin (every 5 minutes of wall time and at its end) and continues from
-// it when the command is run again; --sitting SECONDS bounds this sitting's wall time: runs left
+// DIR/run_<label>_eta<eta>.h5 (the library's run loop: every 5 minutes of wall time, at the
+// sitting's end and at its end, with its records as series) and continues from it when the
+// command is run again; --sitting SECONDS bounds this sitting's wall time: runs left
 // unfinished are reported with their time per step and projected time to solution. --resumable
 // keeps checkpoints at quick scale too (to test resuming).
 //

@@ -74,29 +74,17 @@ double rightmost_offset(const surface::SphereSites& sites) {
   return std::acos(std::min(1.0, std::cos(sites.theta[i]) * std::cos(sites.lambda[i])));
 }
 
-/// SHVD relaxation measured at one evaluation site: chapter3::Relaxation measures SHVD's d_max at
-/// the material point (0, 0) (its interpolant there) unless told a site, while the paper's d_max
-/// point is the rightmost evaluation site, off the axis on most sets. On an odd spiral with s = its
-/// site at (0, 0) the two agree to rounding (value rightmost_loop_vs_library).
-RelaxationResult relax_shvd_at_site(RelaxationSpec spec, const EvaluationSet& e, index_t site) {
-  require(site >= 0 && site < e.size(), "evaluation site", site, "must be a site of the set");
-  spec.measure_site = site;
-  return relax(spec, e);
-}
 
 /// The runs of the study: each computed once per invocation; at full scale also kept in
-/// DIR/run_<label>.txt (written atomically, with the commit that computed it) and read back from
-/// there, so that the full scale can be completed over several sittings (--sitting SECONDS:
-/// no run is started once the sitting's time is spent; the one in progress runs to its end). Runs
-/// are counted in groups (group()), recorded as results["runs"][group] (record()): a group is
-/// finished when every run asked of it was computed or read back.
-/// File layout: a header line "rbfib chapter3_dynamics run v2 <label> <commit>", a line of the
-/// scalars, a line of the per-step medians of the phases, the failure message (or "-"), a line
-/// "B s_1 ... s_B" of the cumulative wall time of the steps at the ends of B blocks (Table 1's
-/// lockstep runs; B = 0 otherwise), then one line per sample "t d_axis r_max r_min volume".
+/// DIR/run_<label>.h5, the library's run loop's checkpoint (the state, the records, the phase times
+/// and the lockstep blocks as series, the commit that began it), so that the full scale continues
+/// over several sittings (--sitting SECONDS: a run in progress stops at the sitting's end and
+/// continues next time; a finished run is read back). Runs are counted in groups (group()),
+/// recorded as results["runs"][group] (record()): a group is finished when every run asked of it
+/// has finished; an unfinished run gives no values (its checks are not run).
 class Runs {
  public:
-  explicit Runs(const st::Options& opt) : opt_(opt), keep_(opt.scale == st::Scale::full), sitting_(opt) {
+  explicit Runs(const st::Options& opt) : opt_(opt), keep_(opt.keeps_runs()), sitting_(opt) {
     skipped_.force_integral0 = skipped_.max_force0 = NAN;
   }
 
@@ -137,43 +125,53 @@ class Runs {
   /// The run of spec on the spiral of n sites (md_degree < 0) or on the MD set of that degree, its
   /// d_max at the material point (0, 0).
   const RelaxationResult& get(const RelaxationSpec& s, index_t n, const std::string& shape_name, int md_degree = -1) {
-    return run(label(s, n, md_degree < 0 ? shape_name : shape_name + "_MD"), s,
-               [&] { return relax(s, md_degree < 0 ? evaluation_set(n) : md_set(md_degree)); });
+    return run(label(s, n, md_degree < 0 ? shape_name : shape_name + "_MD"), s, [&](const std::string& path) {
+      return relax(s, md_degree < 0 ? evaluation_set(n) : md_set(md_degree), path, commit(), sitting_.remaining());
+    });
   }
 
   /// The run of spec on the ellipsoid with d_max at the rightmost evaluation site (the paper's
   /// reading): on the even spiral of n sites (md_degree < 0) or on the MD set of that degree.
-  /// LDSM measures at eval.axis_site (set to that site), SHVD by relax_shvd_at_site.
+  /// LDSM measures at eval.axis_site (set to that site), SHVD at that site too (its measure_site).
   const RelaxationResult& get_rightmost(const RelaxationSpec& s, index_t n, int md_degree = -1) {
     const std::string key = md_degree < 0 ? label(s, n, "ellipsoid_rightmost")
                                           : label(s, index_t(md_degree + 1) * (md_degree + 1), "ellipsoid_MD_rightmost");
-    return run(key, s, [&] {
+    return run(key, s, [&](const std::string& path) {
       EvaluationSet e = md_degree < 0 ? evaluation_set(n) : md_set(md_degree);
       e.axis_site = rightmost_site(e.sites);
-      return s.method == Method::shvd ? relax_shvd_at_site(s, e, e.axis_site) : relax(s, e);
+      RelaxationSpec at = s;
+      // SHVD measures d_max at the material point (0, 0) of its interpolant unless told a site; the
+      // paper's d_max point is the rightmost evaluation site, off the axis on most sets.
+      if (s.method == Method::shvd) at.measure_site = e.axis_site;
+      return relax(at, e, path, commit(), sitting_.remaining());
     });
   }
 
-  /// The SHVD run of spec on the odd spiral of n sites by relax_shvd_at_site at its site (0, 0):
-  /// the same run as get(s, n, "ellipsoid"), stepped by the driver.
+  /// The SHVD run of spec on the odd spiral of n sites measured at its site (0, 0): the same run as
+  /// get(s, n, "ellipsoid"), which measures at the interpolant's material point (0, 0); the two
+  /// agree to rounding (value rightmost_loop_vs_library).
   const RelaxationResult& get_driver_loop(const RelaxationSpec& s, index_t n) {
-    return run(label(s, n, "ellipsoid_driver_loop"), s, [&] {
+    return run(label(s, n, "ellipsoid_driver_loop"), s, [&](const std::string& path) {
       const EvaluationSet& e = evaluation_set(n);
-      return relax_shvd_at_site(s, e, e.axis_site);
+      RelaxationSpec at = s;
+      at.measure_site = e.axis_site;
+      return relax(at, e, path, commit(), sitting_.remaining());
     });
   }
 
   /// Runs of one ellipsoid (same n) in lockstep, one step of each in turn, so that a change of load
-  /// on the shared machine falls on all of them alike; all again unless all are kept. The cumulative
-  /// wall time of each run's steps is taken at the ends of `blocks` blocks of steps (block_seconds).
+  /// on the shared machine falls on all of them alike; all again unless all are kept finished. The
+  /// cumulative wall time of each run's steps is taken at the ends of `blocks` blocks of steps
+  /// (block_seconds).
   std::vector<const RelaxationResult*> get_lockstep(const std::vector<RelaxationSpec>& specs, index_t n, int blocks) {
     std::vector<std::string> keys;
     std::vector<RelaxationResult> rs(specs.size());
-    std::vector<std::vector<double>> ends(specs.size());
     bool all = true;
     for (std::size_t i = 0; i < specs.size(); ++i) {
       keys.push_back(label(specs[i], n, "ellipsoid_lockstep"));
-      all = all && (done_.count(keys[i]) || (keep_ && load(keys[i], rs[i], ends[i])));
+      if (done_.count(keys[i])) continue;
+      if (keep_ && std::filesystem::exists(path(keys[i]))) rs[i] = Relaxation(specs[i], evaluation_set(n), path(keys[i])).result();
+      all = all && rs[i].finished;
     }
     if (!all && sitting_.remaining() <= 0) {
       for (std::size_t i = 0; i < specs.size(); ++i) count(keys[i], specs[i], nullptr);
@@ -181,33 +179,31 @@ class Runs {
     }
     if (!all) {
       std::vector<std::unique_ptr<Relaxation>> runs;
-      for (const RelaxationSpec& s : specs) runs.push_back(std::make_unique<Relaxation>(s, evaluation_set(n)));
+      for (std::size_t i = 0; i < specs.size(); ++i) {
+        if (keep_) std::filesystem::remove(path(keys[i]));  // all again, together
+        runs.push_back(std::make_unique<Relaxation>(specs[i], evaluation_set(n), keep_ ? path(keys[i]) : "", commit()));
+      }
       const int steps = specs.front().steps, every = std::max(1, steps / blocks);
       int last = 0;
-      for (auto& e : ends) e.clear();
       for (bool any = true; any;) {
         any = false;
         for (auto& r : runs) any = r->advance() || any;
         const int k = runs.front()->step();
         if (k != last && (k % every == 0 || k == steps)) {
-          for (std::size_t i = 0; i < runs.size(); ++i) ends[i].push_back(runs[i]->result().phases.total());
+          for (auto& r : runs) r->mark_block();
           last = k;
         }
       }
       for (std::size_t i = 0; i < specs.size(); ++i) {
         rs[i] = runs[i]->result();
         done_.erase(keys[i]);
-        blocks_[keys[i]] = ends[i];
         finished(keys[i], rs[i]);
       }
     }
     std::vector<const RelaxationResult*> out;
     for (std::size_t i = 0; i < specs.size(); ++i) {
       auto it = done_.find(keys[i]);
-      if (it == done_.end()) {
-        it = done_.emplace(keys[i], std::move(rs[i])).first;
-        blocks_[keys[i]] = ends[i];
-      }
+      if (it == done_.end()) it = done_.emplace(keys[i], std::move(rs[i])).first;
       count(keys[i], specs[i], &it->second);
       out.push_back(&it->second);
     }
@@ -217,8 +213,8 @@ class Runs {
   /// The block ends of a lockstep run (cumulative wall time of its steps, s).
   const std::vector<double>& block_seconds(const RelaxationSpec& s, index_t n) const {
     static const std::vector<double> none;
-    auto it = blocks_.find(label(s, n, "ellipsoid_lockstep"));
-    return it == blocks_.end() ? none : it->second;
+    auto it = done_.find(label(s, n, "ellipsoid_lockstep"));
+    return it == done_.end() ? none : it->second.block_ends;
   }
 
   /// results["runs"][group] for every group: finished when each run asked of it was there.
@@ -244,38 +240,33 @@ class Runs {
     std::string stopped;  ///< the first numerical stop among them
   };
 
-  std::string file(const std::string& label) const { return opt_.out_dir + "/run_" + label + ".txt"; }
+  std::string path(const std::string& label) const { return opt_.out_dir + "/run_" + label + ".h5"; }
+  std::string commit() const { return st::source_commit(opt_); }
 
-  /// The run `key` of spec: done this invocation, read back, computed, or (the sitting spent) skipped.
+  /// The run `key` of spec: done this invocation, or computed (kept in its checkpoint at full scale:
+  /// continued, or read back when finished). A run the sitting left unfinished gives no values.
   template <class Compute>
   const RelaxationResult& run(const std::string& key, const RelaxationSpec& s, Compute compute) {
     auto it = done_.find(key);
     if (it == done_.end()) {
-      RelaxationResult r;
-      std::vector<double> ends;
-      if (!(keep_ && load(key, r, ends))) {
-        if (sitting_.remaining() <= 0) {
-          count(key, s, nullptr);
-          return skipped_;
-        }
-        r = compute();
+      RelaxationResult r = compute(keep_ ? path(key) : std::string());
+      if (r.continued && r.finished && r.steps == s.steps)
+        st::log(opt_, key + ": taken from " + path(key) + " (begun by " + r.label + ")");
+      else if (r.finished)
         finished(key, r);
-      }
       it = done_.emplace(key, std::move(r)).first;
     }
     count(key, s, &it->second);
-    return it->second;
+    return it->second.finished ? it->second : skipped_;
   }
 
-  /// Adds run `key` to the current group once (r = nullptr: not run in this sitting).
+  /// Adds run `key` to the current group once (r = nullptr or unfinished: not finished in this sitting).
   void count(const std::string& key, const RelaxationSpec& s, const RelaxationResult* r) {
     if (!counted_.insert(group_ + " " + key).second) return;
     Group& g = groups_[group_];
     g.t_end += s.steps * s.dt;
-    if (!r) {
-      g.finished = false;
-      return;
-    }
+    if (!r || !r->finished) g.finished = false;
+    if (!r) return;
     g.t += r->steps * s.dt;
     g.steps += r->steps;
     g.seconds += r->seconds;
@@ -283,74 +274,8 @@ class Runs {
   }
 
   void finished(const std::string& label, const RelaxationResult& r) {
-    if (keep_) save(label, r);
     st::log(opt_, label + ": " + to_text(r.steps) + " steps in " + to_text(r.seconds) + " s, d_axis " +
                       to_text(r.d_axis()) + (r.failed ? " FAILED: " + r.failure : std::string()));
-  }
-
-  void save(const std::string& label, const RelaxationResult& r) const {
-    const std::string path = file(label), tmp = path + ".tmp";
-    {
-      std::ofstream f(tmp);
-      f.precision(17);
-      f << "rbfib chapter3_dynamics run v2 " << label << " " << st::source_commit(opt_) << "\n";
-      const PhaseTimes& p = r.phases;
-      f << r.steps << " " << int(r.failed) << " " << r.seconds << " " << p.forces << " " << p.spread << " " << p.solve
-        << " " << p.interpolate << " " << p.update << " " << p.force_products << " " << r.force_integral0 << " "
-        << r.max_force0 << "\n";
-      const PhaseTimes& q = r.median;
-      f << q.forces << " " << q.spread << " " << q.solve << " " << q.interpolate << " " << q.update << " "
-        << q.force_products << "\n";
-      f << (r.failed ? r.failure : "-") << "\n";
-      auto it = blocks_.find(label);
-      const std::vector<double> none, &ends = it == blocks_.end() ? none : it->second;
-      f << ends.size();
-      for (double x : ends) f << " " << x;
-      f << "\n";
-      for (const Sample& s : r.series)
-        f << s.t << " " << s.d_axis << " " << s.r_max << " " << s.r_min << " " << s.volume << "\n";
-      if (!f) throw std::runtime_error("cannot write " + tmp);
-    }
-    std::filesystem::rename(tmp, path);
-  }
-
-  bool load(const std::string& label, RelaxationResult& r, std::vector<double>& ends) {
-    std::ifstream f(file(label));
-    if (!f) return false;
-    std::string header, scalars, medians, failure, block_line, line;
-    std::getline(f, header);
-    const std::string tag = "rbfib chapter3_dynamics run v2 " + label + " ";
-    if (header.rfind(tag, 0) != 0 || !std::getline(f, scalars) || !std::getline(f, medians) ||
-        !std::getline(f, failure) || !std::getline(f, block_line))
-      return false;
-    auto phases = [](const std::string& text, PhaseTimes& q) {
-      std::istringstream in(text);
-      return bool(in >> q.forces >> q.spread >> q.solve >> q.interpolate >> q.update >> q.force_products);
-    };
-    if (!phases(medians, r.median)) return false;
-    std::istringstream s(scalars);
-    int failed = 0;
-    PhaseTimes& p = r.phases;
-    if (!(s >> r.steps >> failed >> r.seconds >> p.forces >> p.spread >> p.solve >> p.interpolate >> p.update >>
-          p.force_products >> r.force_integral0 >> r.max_force0))
-      return false;
-    r.failed = failed != 0;
-    r.failure = r.failed ? failure : "";
-    std::istringstream b(block_line);
-    std::size_t count = 0;
-    if (!(b >> count)) return false;
-    ends.resize(count);
-    for (double& x : ends)
-      if (!(b >> x)) return false;
-    while (std::getline(f, line)) {
-      std::istringstream q(line);
-      Sample x{};
-      if (q >> x.t >> x.d_axis >> x.r_max >> x.r_min >> x.volume) r.series.push_back(x);
-    }
-    if (r.series.empty()) return false;
-    blocks_[label] = ends;
-    st::log(opt_, label + ": taken from " + file(label) + " (commit " + header.substr(tag.size()) + ")");
-    return true;
   }
 
   const st::Options& opt_;
@@ -363,7 +288,6 @@ class Runs {
   std::map<index_t, EvaluationSet> sets_;
   std::map<int, EvaluationSet> md_sets_;
   std::map<std::string, RelaxationResult> done_;
-  std::map<std::string, std::vector<double>> blocks_;
 };
 
 /// Best time (of 11) of the jets' products of one SHVD force call for the degree-M interpolant

@@ -5,6 +5,7 @@
 #include "rbfib/core/error.hpp"
 #include "rbfib/fluid/periodic_stokes.hpp"
 #include "rbfib/ib/interaction.hpp"
+#include "rbfib/run/run.hpp"
 #include "rbfib/sim/ib_step.hpp"
 #include "rbfib/linalg/blas.hpp"
 #include "rbfib/mechanics/ldsm.hpp"
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 
 namespace rbfib::chapter3 {
 
@@ -210,23 +212,16 @@ const surface::SphereSites& interpolation_sites(int M) {
 struct Relaxation::Impl {
   RelaxationSpec spec;
   const EvaluationSet& eval;
-  sim::ImmersedBoundary ib;
   std::vector<mechanics::EnergyDensity> energies;
-  RelaxationResult r;
-  PhaseLog per_step;
-  int k = 0;
-  bool done = false;
-  double axis0 = 0;
   std::shared_ptr<const surface::SurfaceOperators> axis_ops;  // SHVD: the interpolant at (0, 0)
   cells::CellGeometry geometry;
+  std::optional<run::Run> loop;
 
-  Impl(const RelaxationSpec& s, const EvaluationSet& e)
-      : spec(s),
-        eval(e),
-        ib(chapter3_step(s.eta, s.L, s.mu, s.dt, s.kernel)),
-        energies(total_energy(s.Gs, s.A, s.sigma)) {
-    require(spec.steps >= 0, "steps", spec.steps, "must be >= 0");
+  Impl(const RelaxationSpec& s, const EvaluationSet& e, const std::string& checkpoint, const std::string& label, double sitting)
+      : spec(s), eval(e), energies(total_energy(s.Gs, s.A, s.sigma)) {
+    require(spec.steps >= 1, "steps", spec.steps, "must be >= 1");
     require(spec.measure_site < index_t(eval.size()), "measure_site", spec.measure_site, "must be a site of the evaluation set");
+    sim::ImmersedBoundary ib = chapter3_step(spec.eta, spec.L, spec.mu, spec.dt, spec.kernel);
     if (spec.method == Method::shvd) {
       // The cell type: unit-sphere reference, the degree-M interpolant through the m sites (LU of
       // Y once), the n evaluation sites with their weights, the total energy of Sec. 4.2.
@@ -250,12 +245,50 @@ struct Relaxation::Impl {
     } else {
       ib.add(sim::LdsmShell{"LDSM", eval.tris, eval.Z, spec.shape.points(eval.sites), energies});
     }
+    run::Options o;
+    o.t_end = spec.steps * spec.dt;
+    o.checkpoint = checkpoint;
+    o.sitting = sitting;
+    o.label = label;
+    o.sample_every = run::Cadence{};  // the hook records at its own steps
+    run::Hooks h;
+    h.after_step = [this](const sim::ImmersedBoundary& ib, const sim::IbStepReport* r, run::SeriesSet& series) {
+      after_step(ib, r, series);
+    };
+    loop.emplace(describe(), std::move(ib), o, std::move(h));
   }
 
-  bool record_now() const { return k == 0 || k == spec.steps || (spec.record_every > 0 && k % spec.record_every == 0); }
+  /// The run as text (what its checkpoint must match).
+  std::string describe() const {
+    std::string d = std::string("chapter3 relaxation ") + to_string(spec.method) + "\n";
+    for (double x : {spec.shape.a, spec.shape.b, spec.shape.c, spec.shape.B, spec.shape.Vf, double(spec.eta), spec.L, spec.mu,
+                     spec.dt, double(spec.steps), double(spec.record_every), double(spec.M), spec.Gs, spec.A, spec.sigma,
+                     double(int(spec.kernel)), double(spec.measure_site)})
+      d += to_text(x) + "\n";
+    return d + eval.family + " " + to_text(eval.size()) + " axis site " + to_text(eval.axis_site) + "\n";
+  }
+
+  bool record_now(long k) const { return k == 0 || k == spec.steps || (spec.record_every > 0 && k % spec.record_every == 0); }
+
+  void after_step(const sim::ImmersedBoundary& ib, const sim::IbStepReport* r, run::SeriesSet& series) {
+    const long k = ib.step_count();
+    if (r) {
+      series["phases"].columns = {"forces (s)", "products (s)", "spread (s)", "solve (s)", "interpolate (s)", "update (s)"};
+      series["phases"].rows.push_back({r->seconds_forces, r->seconds_force_products, r->seconds_spreading, r->seconds_fluid,
+                                       r->seconds_interpolation, r->seconds_update});
+      if (k == 1) {  // the forces of the first step act at X^0
+        const std::vector<double> F0 =
+            spec.method == Method::shvd ? ib.batch_set(0).forces().force.to_host() : ib.shell(0).force();
+        std::vector<double>& start = series["start"].rows.at(0);
+        start.push_back(force_integral(F0));
+        start.push_back(max_abs(F0));
+      }
+    }
+    if (record_now(k)) record(ib, k, series);
+  }
 
   /// The diagnostics of the header at X^k.
-  void record() {
+  void record(const sim::ImmersedBoundary& ib, long k, run::SeriesSet& series) {
     double c[3], volume, x_axis = 0;
     std::vector<double> Xs;
     if (spec.method == Method::shvd) {
@@ -276,72 +309,76 @@ struct Relaxation::Impl {
       else
         for (int v = 0; v < 3; ++v) x_axis += eval.axis_weights[v] * Xs[eval.axis_triangle[v]];
     }
-    if (k == 0) axis0 = x_axis - c[0];
-    r.series.push_back(sample(k * spec.dt, Xs, x_axis, c, volume, axis0));
-  }
-  static void add(double& sum, std::vector<double>& steps, double t) {
-    sum += t;
-    steps.push_back(t);
-  }
-
-  /// The step from X^k to X^{k+1} on the library's coupled step (forward Euler, steady Stokes).
-  void step() {
-    const sim::IbStepReport rep = ib.step();
-    if (k == 0) {  // the forces at X^0
-      const std::vector<double> F0 =
-          spec.method == Method::shvd ? ib.batch_set(0).forces().force.to_host() : ib.shell(0).force();
-      r.force_integral0 = force_integral(F0);
-      r.max_force0 = max_abs(F0);
-    }
-    add(r.phases.forces, per_step.forces, rep.seconds_forces);
-    add(r.phases.force_products, per_step.products, rep.seconds_force_products);
-    add(r.phases.spread, per_step.spread, rep.seconds_spreading);
-    add(r.phases.solve, per_step.solve, rep.seconds_fluid);
-    add(r.phases.interpolate, per_step.interpolate, rep.seconds_interpolation);
-    add(r.phases.update, per_step.update, rep.seconds_update);
+    if (k == 0) series["start"] = run::Series{{"axis0"}, {{x_axis - c[0]}}};
+    const Sample s = sample(k * spec.dt, Xs, x_axis, c, volume, series.at("start").rows.at(0).at(0));
+    series["samples"].columns = {"t", "d_axis", "r_max", "r_min", "volume"};
+    series["samples"].rows.push_back({s.t, s.d_axis, s.r_max, s.r_min, s.volume});
   }
 };
 
-Relaxation::Relaxation(const RelaxationSpec& spec, const EvaluationSet& eval)
-    : impl_(std::make_unique<Impl>(spec, eval)) {}
+Relaxation::Relaxation(const RelaxationSpec& spec, const EvaluationSet& eval, const std::string& checkpoint,
+                       const std::string& label, double sitting)
+    : impl_(std::make_unique<Impl>(spec, eval, checkpoint, label, sitting)) {}
 Relaxation::~Relaxation() = default;
 
-bool Relaxation::advance() {
-  Impl& s = *impl_;
-  if (s.done) return false;
-  const auto t0 = clock_type::now();
-  try {
-    // X^k recorded when due (the forces of the step follow), then the step to X^{k+1}.
-    if (s.record_now()) s.record();
-    if (s.k == s.spec.steps)
-      s.done = true;
-    else {
-      s.step();
-      ++s.k;
-    }
-  } catch (const NumericalError& e) {
-    s.r.failed = true;
-    s.r.failure = std::string(to_string(s.spec.method)) + " at step " + to_text(s.k) +
-                  " (t = " + to_text(s.k * s.spec.dt) + "): " + e.what();
-    s.done = true;
-  }
-  s.r.seconds += since(t0);
-  return !s.done;
+bool Relaxation::advance() { return !impl_->loop->evolve(1).ended(); }
+
+bool Relaxation::advance_all() { return impl_->loop->evolve().ended(); }
+
+void Relaxation::mark_block() {
+  const RelaxationResult r = result();
+  impl_->loop->series()["blocks"].rows.push_back({r.phases.total()});
 }
 
-int Relaxation::step() const { return impl_->k; }
+int Relaxation::step() const { return int(impl_->loop->ib().step_count()); }
 
 RelaxationResult Relaxation::result() const {
-  RelaxationResult r = impl_->r;
-  r.steps = impl_->k;
-  r.median = impl_->per_step.medians();
+  const run::Run& loop = *impl_->loop;
+  const run::Progress p = loop.progress();
+  RelaxationResult r;
+  r.steps = int(p.steps);
+  r.finished = p.ended();
+  r.continued = loop.continued();
+  r.failed = p.status == run::RunStatus::stopped;
+  if (r.failed)
+    r.failure = std::string(to_string(impl_->spec.method)) + " at step " + to_text(p.steps) + " (t = " + to_text(p.t) + "): " +
+                p.stop_message;
+  r.label = loop.label();
+  r.seconds = p.wall_seconds;
+  const run::SeriesSet& s = loop.series();
+  if (auto it = s.find("samples"); it != s.end())
+    for (const std::vector<double>& q : it->second.rows) r.series.push_back(Sample{q[0], q[1], q[2], q[3], q[4]});
+  r.force_integral0 = r.max_force0 = NAN;
+  if (auto it = s.find("start"); it != s.end() && it->second.rows.at(0).size() == 3) {
+    r.force_integral0 = it->second.rows[0][1];
+    r.max_force0 = it->second.rows[0][2];
+  }
+  PhaseLog per_step;
+  if (auto it = s.find("phases"); it != s.end())
+    for (const std::vector<double>& q : it->second.rows) {
+      r.phases.forces += q[0];
+      r.phases.force_products += q[1];
+      r.phases.spread += q[2];
+      r.phases.solve += q[3];
+      r.phases.interpolate += q[4];
+      r.phases.update += q[5];
+      per_step.forces.push_back(q[0]);
+      per_step.products.push_back(q[1]);
+      per_step.spread.push_back(q[2]);
+      per_step.solve.push_back(q[3]);
+      per_step.interpolate.push_back(q[4]);
+      per_step.update.push_back(q[5]);
+    }
+  r.median = per_step.medians();
+  if (auto it = s.find("blocks"); it != s.end())
+    for (const std::vector<double>& q : it->second.rows) r.block_ends.push_back(q.at(0));
   return r;
 }
 
-RelaxationResult relax(const RelaxationSpec& spec, const EvaluationSet& eval) {
-  Relaxation run(spec, eval);
-  while (run.advance()) {
-  }
+RelaxationResult relax(const RelaxationSpec& spec, const EvaluationSet& eval, const std::string& checkpoint,
+                       const std::string& label, double sitting) {
+  Relaxation run(spec, eval, checkpoint, label, sitting);
+  run.advance_all();
   return run.result();
 }
 

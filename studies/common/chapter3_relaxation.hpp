@@ -116,30 +116,44 @@ struct PhaseTimes {
 
 struct RelaxationResult {
   std::vector<Sample> series;
-  int steps = 0;        ///< steps taken
-  bool failed = false;  ///< a NumericalError stopped the run (message in `failure`)
+  int steps = 0;           ///< steps taken
+  bool finished = false;   ///< reached its end (or stopped: failed)
+  bool continued = false;  ///< restored from its checkpoint
+  bool failed = false;     ///< a NumericalError stopped the run (message in `failure`)
   std::string failure;
-  double seconds = 0;          ///< wall time of its steps (advance calls, diagnostics included)
+  std::string label;           ///< the label of the sitting that began it (e.g. the commit)
+  double seconds = 0;          ///< wall time of its steps, over all sittings (s)
   PhaseTimes phases;           ///< summed over the steps
   PhaseTimes median;           ///< per-step medians of each phase
   double force_integral0 = 0;  ///< |sum_i F^_i|_inf at t = 0 (quadrature error, Sec. 4.1)
   double max_force0 = 0;       ///< max_i |F^_i|_inf at t = 0
+  std::vector<double> block_ends;  ///< phases.total() at each mark_block() (Table 1's lockstep blocks)
   double d_axis() const { return series.empty() ? NAN : series.back().d_axis; }
 };
 
 /// The interpolation sites of SHVD for degree M (maximal-determinant-like, built once per M).
 const surface::SphereSites& interpolation_sites(int M);
 
-/// One relaxation, advanced step by step.
+/// One relaxation on the library's coupled step (steady periodic Stokes, forward Euler) stepped by
+/// the library's run loop. Its records (series "samples"), per-step phase times ("phases"), the
+/// quantities at t = 0 ("start") and the lockstep block ends ("blocks") are series of the run, so a
+/// run kept in a checkpoint continues, or is read back when finished, with all of them.
 class Relaxation {
  public:
-  /// Builds the fluid, and the SHVD cell type (operators, LU of Y) or the LDSM state.
-  Relaxation(const RelaxationSpec& spec, const EvaluationSet& eval);
+  /// Builds the fluid, and the SHVD cell type (operators, LU of Y) or the LDSM state. checkpoint:
+  /// where the run is kept (restored from there when it holds this run); empty: nowhere. label:
+  /// kept with a fresh run (the commit that began it). sitting: the wall seconds advance_all()
+  /// may step.
+  Relaxation(const RelaxationSpec& spec, const EvaluationSet& eval, const std::string& checkpoint = "",
+             const std::string& label = "", double sitting = INFINITY);
   ~Relaxation();
-  /// Forces at X^k (recording the diagnostics when due) and, unless k = steps, the step to
-  /// X^{k+1}. Returns false once the run is over (the last record taken, or a NumericalError,
-  /// which is kept in the result as `failed` / `failure`).
+  /// One step (the diagnostics recorded when due). Returns false once the run is over (its end,
+  /// or a NumericalError, kept in the result as `failed` / `failure`).
   bool advance();
+  /// Steps to the end or the sitting's end; returns whether the run is over.
+  bool advance_all();
+  /// Appends phases.total() to the block ends (kept with the run).
+  void mark_block();
   int step() const;
   RelaxationResult result() const;
 
@@ -148,8 +162,10 @@ class Relaxation {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Runs one relaxation to its end.
-RelaxationResult relax(const RelaxationSpec& spec, const EvaluationSet& eval);
+/// Runs one relaxation to its end (kept in `checkpoint` when one is named; a finished run kept
+/// there is read back without a step).
+RelaxationResult relax(const RelaxationSpec& spec, const EvaluationSet& eval, const std::string& checkpoint = "",
+                       const std::string& label = "", double sitting = INFINITY);
 
 /// Runs several relaxations in lockstep, one step of each in turn, so that a change of load on a
 /// shared machine falls on all of them alike (the timing runs of Table 1).

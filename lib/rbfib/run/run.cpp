@@ -142,7 +142,7 @@ Progress Run::progress() const {
   return p;
 }
 
-Progress Run::evolve() {
+Progress Run::evolve(long max_steps) {
   if (record_.status != RunStatus::running) {
     if (hooks_.progress) hooks_.progress(progress());
     return progress();
@@ -151,8 +151,11 @@ Progress Run::evolve() {
   Due checkpoint_due(options_.checkpoint_every, ib_.time(), start), sample_due(options_.sample_every, ib_.time(), start),
       snapshot_due(options_.snapshot_every, ib_.time(), start), progress_due(options_.progress_every, ib_.time(), start);
   const double end = std::min(options_.t_end, options_.until);
+  long taken = 0;
   try {
     while (ib_.time() < end * (1 - 1e-12) && seconds_between(start, clock_type::now()) < options_.sitting) {
+      if (max_steps >= 0 && taken == max_steps) return progress();  // the caller steps again soon
+      ++taken;
       const auto t0 = clock_type::now();
       const sim::IbStepReport report = ib_.step();
       const auto t1 = clock_type::now();

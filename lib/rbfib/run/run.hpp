@@ -110,8 +110,10 @@ class Run {
   Run(std::string source, sim::ImmersedBoundary ib, Options options, Hooks hooks);
 
   /// Steps until the run's end, the sitting's end, `until` or a numerical stop; returns where it
-  /// stands. A run already ended returns at once.
-  Progress evolve();
+  /// stands. A run already ended returns at once. max_steps >= 0 also ends the call after that
+  /// many steps, without a checkpoint of its own (cadences still write theirs): for callers that
+  /// step several runs in turn.
+  Progress evolve(long max_steps = -1);
 
   sim::ImmersedBoundary& ib() { return ib_; }
   const sim::ImmersedBoundary& ib() const { return ib_; }
