@@ -217,7 +217,7 @@ int advance(const scene::Scene& s, const std::string& out, double until) {
     std::cout << "rbfib: stopped: " << p.stop_message << "; the last good state is in " << checkpoint << std::endl;
     return 3;
   }
-  std::cout << "done: " << p.sitting_steps << " steps in " << p.sitting_seconds << " s to t = " << p.t / units::us << " us"
+  std::cout << "done: " << p.sitting_steps << " steps in " << p.sitting_seconds << " s to t = " << p.clock.t / units::us << " us"
             << (p.status == run::RunStatus::finished ? " (the scene's end)" : "") << "; " << csv_path << ", " << checkpoint << std::endl;
   return 0;
 }

@@ -424,8 +424,8 @@ RunResult result_of(const run::SeriesSet& series, const run::Progress& p) {
              : p.status == run::RunStatus::stopped ? (*p.stop_cause == Cause::stopping_condition ? "eq. 5.4" : "stopped")
                                                    : "running";
   r.message = p.stop_message;
-  r.steps = p.steps;
-  r.t = p.t;
+  r.steps = p.clock.step;
+  r.t = p.clock.t;
   r.seconds = p.wall_seconds;
   r.seconds_this_sitting = p.sitting_seconds;
   r.steps_this_sitting = p.sitting_steps;
@@ -486,7 +486,7 @@ RunResult run_orientation(const Orientation& o, const Setup& s, double figure_ti
     // read without building the run.
     if (k.record.status != run::RunStatus::running || sitting.remaining() <= 0) {
       run::Progress q;
-      q.status = k.record.status, q.t = k.state.fluid.t, q.t_end = s.t_end, q.steps = k.state.steps;
+      q.status = k.record.status, q.clock = k.state.clock, q.t_end = s.t_end;
       q.wall_seconds = k.record.wall_seconds, q.steps_timed = k.record.steps_timed, q.stop_message = k.record.stop_message;
       if (q.status == run::RunStatus::stopped) q.stop_cause = k.record.stop_cause;
       const RunResult r = result_of(k.record.series, q);

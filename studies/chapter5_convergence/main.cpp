@@ -117,7 +117,7 @@ Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& 
   if (p.status == run::RunStatus::stopped) throw NumericalError(*p.stop_cause, "grid r = " + to_text(r) + ": " + p.stop_message);
   Run run;
   run.r = r;
-  run.steps = int(p.steps);
+  run.steps = int(p.clock.step);
   run.seconds = p.wall_seconds;
   run.seconds_per_step = p.seconds_per_step();
   run.commit = runner.label();

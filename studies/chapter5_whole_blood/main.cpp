@@ -163,7 +163,7 @@ void start_from(sim::ImmersedBoundary& ib, const io::Checkpoint& start, bool wit
   if (with_red_cells) c.batches.push_back(start.state.batches.at(0));
   c.batches.push_back(platelets);
   c.points = start.state.points;
-  c.steps = start.state.steps, c.dt = start.state.dt, c.level = start.state.level, c.allowing = start.state.allowing;
+  c.clock = start.state.clock;
   ib.restore(c);
 }
 
@@ -525,11 +525,11 @@ int main(int argc, char** argv) {
                 writer = std::make_unique<io::SnapshotWriter>(opt.out_dir + "/snapshots_" + tag, ib);
                 writer->resume(ib.time());
               }
-              if ((ib.step_count() - start.state.steps) % snapshot_every == 0) writer->write(ib);
+              if ((ib.step_count() - start.state.clock.step) % snapshot_every == 0) writer->write(ib);
             };
           const st::SceneRun run = st::run_scene(text, tag, s.every, full, opt, h, remaining());
           const long needed = std::lround(run_window / s.dt);
-          const long done = run.steps - start.state.steps;
+          const long done = run.steps - start.state.clock.step;
           // The run's own span: from its starting time, steps from its start.
           st::RunProgress progress = run.progress(t_end);
           progress.t -= starts[k], progress.t_end = run_window, progress.steps = done;

@@ -336,12 +336,12 @@ RelaxationResult Relaxation::result() const {
   const run::Run& loop = *impl_->loop;
   const run::Progress p = loop.progress();
   RelaxationResult r;
-  r.steps = int(p.steps);
+  r.steps = int(p.clock.step);
   r.finished = p.ended();
   r.continued = loop.continued();
   r.failed = p.status == run::RunStatus::stopped;
   if (r.failed)
-    r.failure = std::string(to_string(impl_->spec.method)) + " at step " + to_text(p.steps) + " (t = " + to_text(p.t) + "): " +
+    r.failure = std::string(to_string(impl_->spec.method)) + " at step " + to_text(p.clock.step) + " (t = " + to_text(p.clock.t) + "): " +
                 p.stop_message;
   r.label = loop.label();
   r.seconds = p.wall_seconds;

@@ -41,7 +41,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   SceneRun r;
   r.samples = run.series("samples").rows;
   r.series = run.series();
-  r.steps = p.steps;
+  r.steps = p.clock.step;
   r.steps_timed = p.steps_timed;
   r.seconds = p.wall_seconds;
   r.stopped = p.stop_message;

@@ -56,7 +56,7 @@ TEST(RunLoop, TwoSittingsEqualOneRunBitForBitWithTheirSeries) {
   run::Run whole(text, "sphere", o, energy_hooks());
   const Progress pw = whole.evolve();
   EXPECT_EQ(pw.status, RunStatus::finished);
-  EXPECT_EQ(pw.steps, 10);
+  EXPECT_EQ(pw.clock.step, 10);
 
   o.checkpoint = temp_path("two_sittings.h5");
   std::filesystem::remove(o.checkpoint);
@@ -66,7 +66,7 @@ TEST(RunLoop, TwoSittingsEqualOneRunBitForBitWithTheirSeries) {
     EXPECT_FALSE(first.continued());
     const Progress p = first.evolve();
     EXPECT_EQ(p.status, RunStatus::running);
-    EXPECT_EQ(p.steps, 4);
+    EXPECT_EQ(p.clock.step, 4);
   }
   o.until = INFINITY;
   run::Run second(text, "sphere", o, energy_hooks());
@@ -100,7 +100,7 @@ TEST(RunLoop, AFinishedRunIsACheckpointMarkedFinishedAndIsNotSteppedAgain) {
   const Progress p = again.evolve();
   EXPECT_EQ(p.status, RunStatus::finished);
   EXPECT_EQ(p.sitting_steps, 0);
-  EXPECT_EQ(p.steps, 2);
+  EXPECT_EQ(p.clock.step, 2);
   // Another scene text is another run: the checkpoint is not used.
   run::Run other(sphere_scene("0.2 us", "0.8 us"), "sphere", o, energy_hooks());
   EXPECT_FALSE(other.continued());
@@ -123,7 +123,7 @@ TEST(RunLoop, ANumericalStopKeepsTheLastGoodStateItsMessageAndItsCause) {
   const io::Checkpoint k = io::read_checkpoint(o.checkpoint);
   EXPECT_EQ(k.record.status, RunStatus::stopped);
   EXPECT_EQ(k.record.stop_cause, Cause::stopping_condition);
-  EXPECT_EQ(k.state.steps, 0);
+  EXPECT_EQ(k.state.clock.step, 0);
   const host_vector<double> a = before, b = k.state.batches.at(0);
   for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << i;
   run::Run again(text, "sphere", o, energy_hooks());
@@ -153,9 +153,9 @@ TEST(RunLoop, ASittingLimitOfZeroTakesNoStepAndKeepsACheckpoint) {
   std::filesystem::remove(o.checkpoint);
   const Progress p = run::Run(text, "sphere", o, energy_hooks()).evolve();
   EXPECT_EQ(p.status, RunStatus::running);
-  EXPECT_EQ(p.steps, 0);
+  EXPECT_EQ(p.clock.step, 0);
   EXPECT_TRUE(std::filesystem::exists(o.checkpoint));
-  EXPECT_EQ(io::read_checkpoint(o.checkpoint).state.steps, 0);
+  EXPECT_EQ(io::read_checkpoint(o.checkpoint).state.clock.step, 0);
 }
 
 TEST(RunLoop, SeriesOfAnyRowWidthSurviveTheCheckpoint) {

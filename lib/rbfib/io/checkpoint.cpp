@@ -110,10 +110,10 @@ void write_checkpoint(const std::string& path, const std::string& scene_yaml, co
   {
     Id file = h5::create_file(tmp);
     h5::attribute(file, "format", std::string(format));
-    h5::attribute(file, "steps", c.steps);
-    h5::attribute(file, "dt", c.dt);
-    h5::attribute(file, "level", c.level);
-    h5::attribute(file, "allowing", c.allowing);
+    h5::attribute(file, "steps", c.clock.step);
+    h5::attribute(file, "dt", c.clock.dt);
+    h5::attribute(file, "level", c.clock.level);
+    h5::attribute(file, "allowing", c.clock.allowing);
     h5::attribute(file, "status", std::string(to_string(record.status)));
     h5::attribute(file, "stop_message", record.stop_message);
     h5::attribute(file, "stop_cause", std::string(to_string(record.stop_cause)));
@@ -173,14 +173,15 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (version != format && version != format_1) r.fail("format (expected '" + std::string(format) + "')");
   Checkpoint k;
   k.scene_yaml = r.bytes(file, "scene");
-  k.state.steps = r.attribute<long>(file, "steps", H5T_NATIVE_LONG);
-  k.state.dt = r.attribute<double>(file, "dt", H5T_NATIVE_DOUBLE);
-  k.state.level = r.attribute<int>(file, "level", H5T_NATIVE_INT);
-  k.state.allowing = r.attribute<int>(file, "allowing", H5T_NATIVE_INT);
+  sim::Clock& clock = k.state.clock;
+  clock.step = r.attribute<long>(file, "steps", H5T_NATIVE_LONG);
+  clock.dt = r.attribute<double>(file, "dt", H5T_NATIVE_DOUBLE);
+  clock.level = r.attribute<int>(file, "level", H5T_NATIVE_INT);
+  clock.allowing = r.attribute<int>(file, "allowing", H5T_NATIVE_INT);
   {
     if (H5Lexists(file, "fluid", H5P_DEFAULT) <= 0) r.fail("fluid");
     Id fluid{H5Gopen2(file, "fluid", H5P_DEFAULT), H5Gclose};
-    k.state.fluid.t = r.attribute<double>(fluid, "t", H5T_NATIVE_DOUBLE);
+    k.state.fluid.t = clock.t = r.attribute<double>(fluid, "t", H5T_NATIVE_DOUBLE);
     const char* u[3] = {"u0", "u1", "u2"};
     for (int a = 0; a < 3; ++a) k.state.fluid.u[a] = r.array(fluid, u[a]);
     k.state.fluid.p = r.array(fluid, "p");

@@ -40,7 +40,7 @@ class Due {
 
 double Progress::hours_to_go() const {
   if (ended()) return 0;
-  const double mean_dt = steps > 0 ? t / double(steps) : dt;
+  const double t = clock.t, mean_dt = clock.step > 0 ? t / double(clock.step) : clock.dt;
   const double h = (t_end - t) / mean_dt * seconds_per_step() / 3600;
   return std::isfinite(h) ? std::max(0.0, h) : NAN;
 }
@@ -51,9 +51,9 @@ std::string Progress::describe() const {
   const char* name = t_end >= 1e-3 ? "ms" : "us";
   char line[320];
   const double rate = sitting_seconds > 0 ? double(sitting_steps) / sitting_seconds : NAN;
-  const double mean_dt = steps > 0 ? t / double(steps) : dt;
+  const double t = clock.t, mean_dt = clock.step > 0 ? t / double(clock.step) : clock.dt;
   std::snprintf(line, sizeof line, "t = %.4g of %.4g %s (%.1f%%), step %ld, %.3g steps/s, mean dt %.4g ns", t / unit, t_end / unit, name,
-                t_end > 0 ? 100 * t / t_end : 0.0, steps, rate, mean_dt / units::ns);
+                t_end > 0 ? 100 * t / t_end : 0.0, clock.step, rate, mean_dt / units::ns);
   std::string s = line;
   if (status == RunStatus::stopped) return s + ", stopped (" + to_string(*stop_cause) + "): " + stop_message;
   if (status == RunStatus::finished) return s + ", finished";
@@ -127,10 +127,8 @@ void Run::checkpoint() {
 Progress Run::progress() const {
   Progress p;
   p.status = record_.status;
-  p.t = ib_.time();
+  p.clock = ib_.clock();
   p.t_end = options_.t_end;
-  p.steps = ib_.step_count();
-  p.dt = ib_.dt();
   p.wall_seconds = record_.wall_seconds;
   p.steps_timed = record_.steps_timed;
   p.sitting_seconds = sitting_seconds_;

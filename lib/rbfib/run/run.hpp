@@ -54,9 +54,8 @@ struct Options {
 /// Where a run stands, for progress lines and reports.
 struct Progress {
   RunStatus status = RunStatus::running;
-  double t = 0, t_end = 0;     ///< s
-  long steps = 0;              ///< from t = 0
-  double dt = 0;               ///< the step size now (s)
+  sim::Clock clock;            ///< t, dt, the step count from t = 0 and the ladder's level now
+  double t_end = 0;            ///< s
   double wall_seconds = 0;     ///< wall time of the steps taken, all sittings (s)
   long steps_timed = 0;        ///< the steps those seconds took
   double sitting_seconds = 0;  ///< wall time of this sitting's steps (s)

@@ -71,10 +71,7 @@ ImmersedBoundary::Carried ImmersedBoundary::carried() const {
   for (const auto* b : batches_) c.batches.push_back(b->batch().state().storage());
   for (const auto* q : points_) c.points.push_back(q->points().X);
   for (const auto* q : shells_) c.shells.push_back(q->shell().X);
-  c.steps = steps_;
-  c.dt = fluid_->dt();
-  c.level = level_;
-  c.allowing = allowing_;
+  c.clock = clock();
   return c;
 }
 
@@ -100,15 +97,15 @@ void ImmersedBoundary::restore(const Carried& c) {
   for (std::size_t q = 0; q < shells_.size(); ++q)
     require(c.shells[q].size() == shells_[q]->shell().X.size(), "checkpoint: LDSM shell " + to_text(q) + " size",
             c.shells[q].size(), "must equal this setup's " + to_text(shells_[q]->shell().X.size()));
-  require(std::isfinite(c.dt) && c.dt > 0, "checkpoint: dt", c.dt, "must be positive");
+  require(std::isfinite(c.clock.dt) && c.clock.dt > 0, "checkpoint: dt", c.clock.dt, "must be positive");
   fluid_->state() = c.fluid;
   for (std::size_t q = 0; q < shells_.size(); ++q) shells_[q]->shell().X = c.shells[q];
   for (std::size_t b = 0; b < batches_.size(); ++b) batch(index_t(b)).state().storage() = c.batches[b];
   for (std::size_t p = 0; p < points_.size(); ++p) points_[p]->points().X = c.points[p];
-  steps_ = c.steps;
-  level_ = c.level;
-  allowing_ = c.allowing;
-  fluid_->set_dt(c.dt);
+  steps_ = c.clock.step;
+  level_ = c.clock.level;
+  allowing_ = c.clock.allowing;
+  fluid_->set_dt(c.clock.dt);
 }
 
 void ImmersedBoundary::set_level(int level) {

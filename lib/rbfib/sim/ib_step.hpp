@@ -67,6 +67,16 @@ struct AdaptiveStep {
   int grow_after = 16;  ///< steps that allow a doubling before it is taken
 };
 
+/// Where the coupled step stands in time: the one clock of a run (the fluid's state carries t for
+/// its boundary data; the step reads and sets it through here).
+struct Clock {
+  double t = 0;      ///< t^n (s)
+  double dt = 0;     ///< the size of the next step (s)
+  long step = 0;     ///< steps taken from t = 0
+  int level = 0;     ///< the adaptive ladder's level: dt = 2^level dt_min (0 without the ladder)
+  int allowing = 0;  ///< consecutive steps whose eq. 5.4 bound allowed twice their dt
+};
+
 struct IbOptions {
   Coupling coupling = Coupling::seed;
   ib::Kernel kernel = ib::Kernel::bspline3;
@@ -131,10 +141,12 @@ class ImmersedBoundary {
   ib::Interaction& interaction() { return ib_; }
   double time() const { return fluid_->state().t; }
   long step_count() const { return steps_; }
+  /// t, dt, the step count and the ladder's level, read together.
+  Clock clock() const { return Clock{time(), dt(), steps_, level_, allowing_}; }
 
   /// Everything a step carries over to the next, for checkpoints: the fluid state, each batch's
-  /// data-site state (X and U), each point set's positions, the step count, the step size and
-  /// the adaptive step's state. The rest (operators, factorizations, workspaces) is rebuilt from
+  /// data-site state (X and U), each point set's positions, each shell's vertices and the clock
+  /// (its t is the fluid state's). The rest (operators, factorizations, workspaces) is rebuilt from
   /// the setup, so restoring this into an ImmersedBoundary built the same way continues the run
   /// bit for bit.
   struct Carried {
@@ -142,9 +154,7 @@ class ImmersedBoundary {
     std::vector<dvec> batches;  ///< each batch's state storage (n_d x 6N, column-major)
     std::vector<dvec> points;   ///< each point set's positions
     std::vector<std::vector<double>> shells;  ///< each LDSM shell's vertices
-    long steps = 0;
-    double dt = 0;
-    int level = 0, allowing = 0;
+    Clock clock;
   };
   Carried carried() const;
   /// Restores a carried state; throws InputError naming what does not match this setup.
