@@ -4,6 +4,7 @@
 #include "rbfib/core/exec.hpp"
 #include "rbfib/core/units.hpp"
 
+#include <CLI/CLI.hpp>
 #include <omp.h>
 
 #include <algorithm>
@@ -27,44 +28,30 @@ Options parse_command_line(int argc, char** argv, const std::string& name, const
     std::cerr << name << ": " << msg << " (try --help)\n";
     std::exit(2);
   };
-  auto value = [&](int& i, const std::string& a, const char* what) -> std::string {
-    if (++i >= argc) fail(a + " needs " + what);
-    return argv[i];
-  };
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--help" || a == "-h") {
-      std::cout << "usage: study_" << name << " [--scale quick|full] [--out DIR] [--sitting SECONDS] [--resumable] [--commit HASH] [--source DIR]\n"
-                << description << "\n"
-                << "  --scale      quick (CI sizes, default) or full (the paper's sizes)\n"
-                << "  --out        the directory for results.json and the runs' files (default .)\n"
-                << "  --sitting    wall seconds this sitting may take: runs kept over sittings then save their\n"
-                << "               checkpoints and report how far they came (default: no limit)\n"
-                << "  --resumable  keep checkpoints at quick scale too (full scale always keeps them)\n"
-                << "  --commit     the commit that built this driver, kept with saved runs\n"
-                << "  --source     the source tree for stored inputs (default: the configured one)\n";
-      std::exit(0);
-    } else if (a == "--scale") {
-      const std::string s = value(i, a, "a value: quick or full");
-      if (s == "quick") opt.scale = Scale::quick;
-      else if (s == "full") opt.scale = Scale::full;
-      else fail("--scale = '" + s + "' is not one of: quick, full");
-    } else if (a == "--out") {
-      opt.out_dir = value(i, a, "a directory");
-    } else if (a == "--sitting") {
-      const std::string v = value(i, a, "a number of seconds");
-      char* end = nullptr;
-      opt.sitting = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(opt.sitting > 0)) fail("--sitting = '" + v + "' must be a positive number of seconds");
-    } else if (a == "--resumable") {
-      opt.resumable = true;
-    } else if (a == "--commit") {
-      opt.commit = value(i, a, "a commit");
-    } else if (a == "--source") {
-      opt.source_dir = value(i, a, "a directory");
-    } else {
-      fail("unknown argument '" + a + "'");
-    }
+  CLI::App app{description, "study_" + name};
+  std::string scale = "quick", sitting;
+  app.add_option("--scale", scale, "quick (CI sizes, default) or full (the paper's sizes)");
+  app.add_option("--out", opt.out_dir, "the directory for results.json and the runs' files (default .)");
+  app.add_option("--sitting", sitting,
+                 "wall seconds this sitting may take: runs kept over sittings then save their checkpoints and report how far "
+                 "they came (default: no limit)");
+  app.add_flag("--resumable", opt.resumable, "keep checkpoints at quick scale too (full scale always keeps them)");
+  app.add_option("--commit", opt.commit, "the commit that built this driver, kept with saved runs");
+  app.add_option("--source", opt.source_dir, "the source tree for stored inputs (default: the configured one)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    std::exit(app.exit(e));
+  } catch (const CLI::ParseError& e) {
+    fail(e.what());
+  }
+  if (scale == "quick") opt.scale = Scale::quick;
+  else if (scale == "full") opt.scale = Scale::full;
+  else fail("--scale = '" + scale + "' is not one of: quick, full");
+  if (!sitting.empty()) {
+    char* end = nullptr;
+    opt.sitting = std::strtod(sitting.c_str(), &end);
+    if (end == sitting.c_str() || *end != '\0' || !(opt.sitting > 0)) fail("--sitting = '" + sitting + "' must be a positive number of seconds");
   }
   std::error_code ec;
   std::filesystem::create_directories(opt.out_dir, ec);
