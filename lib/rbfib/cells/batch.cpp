@@ -160,12 +160,18 @@ std::vector<double> Batch::positions_host() const {
 }
 
 void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings) {
+  compute_forces(batch, batch.state().view(), out, timings);
+}
+
+void compute_forces(const Batch& batch, linalg::ConstMatrixView state, CellForces& out, ForceTimings* timings) {
   const CellType& type = batch.type();
   const ForceModel& model = type.model();
   const std::string& name = type.name();
   const index_t N = batch.size(), ns = type.n_sample(), nd = type.n_data(), total = N * ns;
   const bool dissipation = model.dissipation(), bending = model.bending();
   const index_t cols = (dissipation ? 6 : 3) * N;
+  require(state.rows == nd && state.cols >= cols, "force call of cell type '" + name + "': state", to_text(state.rows) + " x " + to_text(state.cols),
+          "must be n_d x 6N = " + to_text(nd) + " x " + to_text(6 * N));
   Batch::Workspace& w = batch.workspace();
   auto t0 = std::chrono::steady_clock::now();
   if (timings) {
@@ -180,8 +186,7 @@ void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings) 
   const index_t ldd = surface::derivative_count * nj;
   w.values.resize(nj, cols);
   w.derivatives.resize(ldd, cols);
-  surface::apply_operators(type.operators(), batch.state().view().block(0, 0, nd, cols), w.values.view(),
-                           w.derivatives.view(), w.ops);
+  surface::apply_operators(type.operators(), state.block(0, 0, nd, cols), w.values.view(), w.derivatives.view(), w.ops);
   out.positions.resize(ns, 3 * N);
   linalg::copy(w.values.view().block(0, 0, ns, 3 * N), out.positions.view());
   const double* V = ptr(w.values.storage());

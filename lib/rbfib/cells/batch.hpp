@@ -122,6 +122,9 @@ class Batch {
 /// undefined energy or a non-finite force, and naming the cell for one turned inside out
 /// (enclosed volume <= 0); `out` is then unspecified.
 void compute_forces(const Batch& batch, CellForces& out, ForceTimings* timings = nullptr);
+/// The same at another state of the batch's cells (n_d x 6N: positions then velocities at the
+/// data sites, e.g. the predicted X* of the coupled step kept outside the batch).
+void compute_forces(const Batch& batch, linalg::ConstMatrixView state, CellForces& out, ForceTimings* timings = nullptr);
 
 /// The geometry of every cell of a batch, without its forces (for samples and diagnostics).
 struct CellGeometry {

@@ -19,6 +19,16 @@ index_t first_non_finite(const double* x, index_t n) {
 }
 index_t first_non_finite(const dvec& x) { return first_non_finite(ptr(x), index_t(x.size())); }
 
+/// X += c over n values, on the device.
+void shift_by(double* X, double c, index_t n) {
+  for_each_index(n, [=] RBFIB_HD(index_t i) { X[i] += c; });
+}
+
+/// X += c U over n values, on the device.
+void add_scaled(double* X, const double* U, double c, index_t n) {
+  for_each_index(n, [=] RBFIB_HD(index_t i) { X[i] += c * U[i]; });
+}
+
 bool moving(const std::array<double, 3>& u_frame) { return u_frame[0] != 0 || u_frame[1] != 0 || u_frame[2] != 0; }
 
 /// X = X0 + c (U + u_frame[d]) over 3 blocks of `block` values (component-major), on the device.
@@ -51,10 +61,6 @@ void spread_into(ib::Interaction& ib, ib::Spreading algorithm, const dvec& X, co
 
 // ---- cell batches ---------------------------------------------------------------------------
 
-void CellBatchSet::save() { saved_ = batch_.state().storage(); }
-
-void CellBatchSet::restore() { batch_.state().storage() = saved_; }
-
 void CellBatchSet::locate(ib::Interaction& ib) {
   // X^n, read in place from the state, checked finite, then sorted once.
   const index_t nd = batch_.type().n_data(), N = batch_.size(), n = N * nd;
@@ -64,12 +70,28 @@ void CellBatchSet::locate(ib::Interaction& ib) {
     throw NumericalError(Cause::non_finite, name() + ", cell " + to_text((k % n) / nd) + ": non-finite position at data site " +
                                                to_text(k % nd) + " (coordinate " + "xyz"[k / n] + ")");
   ib.sort(X, n, start_);
+  predicted_ = false;
 }
 
 void CellBatchSet::interpolate_start(ib::Interaction& ib, const VectorField& u) { interpolate_at(ib, start_, u, U_, name()); }
 
+void CellBatchSet::predict(double c) {
+  // X* = X^n + c U^n beside the batch's state, with U^n after it (the velocities of dissipation).
+  const linalg::DeviceMatrix& state = batch_.state();
+  star_.resize(state.rows(), state.cols());
+  const auto n = static_cast<std::ptrdiff_t>(U_.size());
+  auto star = star_.storage().begin();
+  thrust::copy(state.storage().begin(), state.storage().begin() + n, star);  // X^n
+  thrust::copy(U_.begin(), U_.end(), star + n);                             // U^n
+  add_scaled(ptr(star_.storage()), ptr(U_), c, index_t(n));
+  predicted_ = true;
+}
+
 double CellBatchSet::compute_force() {
-  cells::compute_forces(batch_, forces_, &timings_);
+  if (predicted_)
+    cells::compute_forces(batch_, star_.view(), forces_, &timings_);
+  else
+    cells::compute_forces(batch_, forces_, &timings_);
   return forces_.energy;
 }
 
@@ -78,22 +100,19 @@ void CellBatchSet::spread(ib::Interaction& ib, ib::Spreading algorithm, VectorFi
 }
 
 void CellBatchSet::interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) {
-  if (at_predicted) ib.sort(ptr(X_), index_t(X_.size()) / 3, start_);
+  if (at_predicted) ib.sort(ptr(star_.storage()), index_t(U_.size()) / 3, start_);  // X*, the first 3 n_d N entries
   interpolate_at(ib, start_, u, U_, name());
 }
 
-void CellBatchSet::advance(double c, const std::array<double, 3>* u_frame) {
+void CellBatchSet::update(double dt, const std::array<double, 3>& u_frame) {
+  // X^{n+1} = X^n + dt (U + u_frame) in place, then U into the velocity block.
   const auto n = static_cast<std::ptrdiff_t>(U_.size());
-  X_.resize(U_.size());
-  if (u_frame && moving(*u_frame)) {
-    advance_in_frame(ptr(X_), ptr(saved_), ptr(U_), c, *u_frame, index_t(n / 3));
-  } else {
-    thrust::copy(saved_.begin(), saved_.begin() + n, X_.begin());  // X^n
-    blas::axpy(c, U_, X_);
-  }
-  auto state = batch_.state().storage().begin();
-  thrust::copy(X_.begin(), X_.end(), state);
-  thrust::copy(U_.begin(), U_.end(), state + n);  // the velocity block
+  double* X = ptr(batch_.state().storage());
+  if (moving(u_frame))
+    advance_in_frame(X, X, ptr(U_), dt, u_frame, index_t(n / 3));
+  else
+    add_scaled(X, ptr(U_), dt, index_t(n));
+  thrust::copy(U_.begin(), U_.end(), batch_.state().storage().begin() + n);
 }
 
 // ---- tethered points ------------------------------------------------------------------------
@@ -143,11 +162,7 @@ void TetheredPointSet::update(double dt, const std::array<double, 3>& u_frame) {
   if (!moving(u_frame)) return;
   // Eqs. 94-95 as written: X^ = X^n + dt U, then X^{n+1} = X^ + dt u_c.
   const index_t n = index_t(X0_.size() / 3);
-  for (int d = 0; d < 3; ++d) {
-    double* X = ptr(points_.X) + d * n;
-    const double c = dt * u_frame[d];
-    for_each_index(n, [=] RBFIB_HD(index_t i) { X[i] += c; });
-  }
+  for (int d = 0; d < 3; ++d) shift_by(ptr(points_.X) + d * n, dt * u_frame[d], n);
 }
 
 std::array<double, 3> TetheredPointSet::frame_velocity(double dt) const {

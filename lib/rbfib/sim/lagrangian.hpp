@@ -60,20 +60,21 @@ void spread_into(ib::Interaction& ib, ib::Spreading algorithm, const dvec& X, co
 
 /// A batch of cells of one type (cells/batch.hpp): data sites X carried, forces computed at the
 /// sample sites reconstructed from X* and spread from there (eq. 2.24), velocities interpolated
-/// at the data sites (eq. 2.23). The batch's state holds X* and U^n between (b) and (g).
+/// at the data sites (eq. 2.23). The batch's state holds X^n until (g); X* (with U^n, for
+/// dissipation) lives in the set's workspace, so a refused or failed step has nothing to restore.
 class CellBatchSet final : public LagrangianSet {
  public:
   explicit CellBatchSet(cells::Batch batch) : batch_(std::move(batch)) {}
   std::string name() const override { return "cell type '" + batch_.type().name() + "'"; }
-  void save() override;
-  void restore() override;
+  void save() override {}     // the state changes only in update(), the step's last verb
+  void restore() override {}  // (a failure before it leaves X^n in place)
   void locate(ib::Interaction& ib) override;
   void interpolate_start(ib::Interaction& ib, const VectorField& u) override;
-  void predict(double c) override { advance(c, nullptr); }
+  void predict(double c) override;
   double compute_force() override;
   void spread(ib::Interaction& ib, ib::Spreading algorithm, VectorField& f, VectorField& scratch) override;
   void interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) override;
-  void update(double dt, const std::array<double, 3>& u_frame) override { advance(dt, &u_frame); }
+  void update(double dt, const std::array<double, 3>& u_frame) override;
   double seconds_force_products() const override { return timings_.products(); }
 
   cells::Batch& batch() { return batch_; }
@@ -81,15 +82,14 @@ class CellBatchSet final : public LagrangianSet {
   const cells::CellForces& forces() const { return forces_; }
 
  private:
-  /// X = X^n + c (U + u_frame), X^n from the saved state; written into the batch's state with U.
-  void advance(double c, const std::array<double, 3>* u_frame);
   cells::Batch batch_;
   cells::CellForces forces_;
   cells::ForceTimings timings_;
-  dvec saved_;               // the whole state (X^n and U) at the start of a step
-  ib::SortedPoints start_;   // X^n sorted once by grid cell: (a) and (f) interpolate there
-  ib::SortedPoints sample_;  // the sample sites the forces are spread from
-  dvec X_, U_;               // the positions being used, the interpolated velocities
+  linalg::DeviceMatrix star_;  // X* = X^n + c U^n and U^n (n_d x 6N), once predicted
+  bool predicted_ = false;     // whether this step's forces act at star_ (else at X^n)
+  ib::SortedPoints start_;     // X^n sorted once by grid cell: (a) and (f) interpolate there
+  ib::SortedPoints sample_;    // the sample sites the forces are spread from
+  dvec U_;                     // the interpolated velocities (3 n_d N)
 };
 
 /// Bare Lagrangian points held by damped springs to anchors (dissertation eq. 2.10, the
