@@ -14,7 +14,6 @@
 #include "rbfib/surface/quadrature.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -24,8 +23,6 @@ namespace rbfib::chapter3 {
 
 namespace {
 
-using clock_type = std::chrono::steady_clock;
-double since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
 
 /// The periodic MAC grid on [-L, L]^3 with eta cells per side.
 MacGrid periodic_grid(int eta, double L) {
@@ -44,27 +41,6 @@ sim::ImmersedBoundary chapter3_step(int eta, double L, double mu, double dt, ib:
   o.kernel = kernel;
   o.stopping_condition = false;
   return sim::ImmersedBoundary(std::make_unique<PeriodicStokesStep>(periodic_grid(eta, L), FluidParameters{1.0, mu}, dt, true), o);
-}
-
-/// Centroid of the volume enclosed by the triangulated surface X (n x 3 column-major), and the volume.
-void polyhedron_centroid(const std::vector<surface::Triangle>& tris, const std::vector<double>& X, double c[3],
-                         double& volume) {
-  const std::size_t n = X.size() / 3;
-  double m[3] = {0, 0, 0};
-  volume = 0;
-  for (const auto& t : tris) {
-    double a[3], b[3], d[3], bxd[3];
-    for (int k = 0; k < 3; ++k) {
-      a[k] = X[k * n + t[0]];
-      b[k] = X[k * n + t[1]];
-      d[k] = X[k * n + t[2]];
-    }
-    surface::cross3(b, d, bxd);
-    const double v = surface::dot3(a, bxd) / 6;  // the tetrahedron (0, a, b, d)
-    volume += v;
-    for (int k = 0; k < 3; ++k) m[k] += v * (a[k] + b[k] + d[k]) / 4;
-  }
-  for (int k = 0; k < 3; ++k) c[k] = m[k] / volume;
 }
 
 /// The diagnostics of the header from the evaluation sites' positions Xs (n x 3), the x coordinate
@@ -124,82 +100,8 @@ double force_integral(const std::vector<double>& F) {
 
 const char* to_string(Method m) { return m == Method::shvd ? "SHVD" : "LDSM"; }
 
-index_t rightmost_site(const surface::SphereSites& sites) {
-  index_t best = 0;
-  for (index_t i = 1; i < sites.size(); ++i)
-    if (std::cos(sites.theta[i]) * std::cos(sites.lambda[i]) > std::cos(sites.theta[best]) * std::cos(sites.lambda[best]))
-      best = i;
-  return best;
-}
-
-EvaluationSet make_evaluation_set(index_t n) {
-  require(n >= 4, "evaluation set size n", n, "must be >= 4");
-  const auto t0 = clock_type::now();
-  EvaluationSet e;
-  e.family = "spiral";
-  e.sites = surface::bauer_spiral(n);
-  if (n % 2 == 1) {
-    // Site j = (n + 1)/2 (1-based) has latitude asin(0) = 0 and longitude mod(pi, 2 pi) - pi = 0.
-    e.axis_site = (n + 1) / 2 - 1;
-    if (e.sites.lambda[e.axis_site] != 0.0 || e.sites.theta[e.axis_site] != 0.0)
-      throw NumericalError(Cause::solver, "Bauer spiral of " + to_text(n) + " sites: site " + to_text(e.axis_site) +
-                           " is not at (lambda, theta) = (0, 0)");
-  } else {
-    e.axis_site = rightmost_site(e.sites);  // no site on the x axis (the rightmost lies sqrt(pi / n) from it)
-  }
-  const surface::RbfWeights q = surface::rbf_sphere_weights(e.sites, 3);
-  e.w = q.w;
-  e.rcond = q.rcond;
-  e.tris = surface::sphere_triangulation(e.sites);
-  e.Z = surface::ellipsoid(1, 1, 1).points(e.sites);
-  e.seconds = since(t0);
-  return e;
-}
-
 std::vector<mechanics::EnergyDensity> total_energy(double Gs, double A, double sigma) {
   return {mechanics::EnergyDensity::neo_hookean_paper(Gs, A), mechanics::EnergyDensity::surface_tension(sigma)};
-}
-
-EvaluationSet make_md_evaluation_set(const std::string& file, int N) {
-  const auto t0 = clock_type::now();
-  EvaluationSet e;
-  e.family = "MD";
-  e.sites = surface::read_sphere_sites(file);
-  const index_t n = e.sites.size();
-  require(n == index_t(N + 1) * (N + 1), file + ": number of sites", n,
-          "must be (N+1)^2 = " + to_text((N + 1) * (N + 1)));
-  const surface::NnlsWeights q = surface::nnls_sh_weights(e.sites, N);
-  if (!(q.residual < 1e-10))
-    throw NumericalError(Cause::solver, "eq. (45) weights on " + file + ": NNLS residual " + to_text(q.residual));
-  e.w = q.w;
-  e.eq45_residual = q.residual;
-  e.tris = surface::sphere_triangulation(e.sites);
-  e.Z = surface::ellipsoid(1, 1, 1).points(e.sites);
-  // The triangle met by the ray of (1, 0, 0): e_x = a A + b B + c C with a, b, c >= 0.
-  bool found = false;
-  for (const surface::Triangle& t : e.tris) {
-    double P[3][3];
-    for (int v = 0; v < 3; ++v)
-      for (int d = 0; d < 3; ++d) P[v][d] = e.Z[d * n + t[v]];
-    // Cramer's rule for [A B C] w = e_x.
-    auto det3 = [](const double* a, const double* b, const double* c) {
-      return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-             a[2] * (b[0] * c[1] - b[1] * c[0]);
-    };
-    const double ex[3] = {1, 0, 0};
-    const double D = det3(P[0], P[1], P[2]);
-    const double w[3] = {det3(ex, P[1], P[2]) / D, det3(P[0], ex, P[2]) / D, det3(P[0], P[1], ex) / D};
-    if (w[0] >= 0 && w[1] >= 0 && w[2] >= 0) {
-      const double sum = w[0] + w[1] + w[2];
-      e.axis_triangle = t;
-      for (int v = 0; v < 3; ++v) e.axis_weights[v] = w[v] / sum;
-      found = true;
-      break;
-    }
-  }
-  if (!found) throw NumericalError(Cause::solver, file + ": no triangle meets the ray of (1, 0, 0)");
-  e.seconds = since(t0);
-  return e;
 }
 
 const surface::SphereSites& interpolation_sites(int M) {
@@ -303,7 +205,9 @@ struct Relaxation::Impl {
                                       : surface::jets_from_operators(*axis_ops, batch.positions_host())[0].x[0];
     } else {
       Xs = ib.shell(0).shell().X;
-      polyhedron_centroid(eval.tris, Xs, c, volume);
+      const surface::PolyhedronMeasures pm = surface::polyhedron_measures(eval.tris, Xs);
+      volume = pm.volume;
+      for (int d = 0; d < 3; ++d) c[d] = pm.centroid[d];
       if (eval.axis_site >= 0)  // the material point (0, 0) on the piecewise-linear surface
         x_axis = Xs[eval.axis_site];
       else

@@ -1,6 +1,7 @@
 #include "rbfib/surface/triangulation.hpp"
 
 #include "rbfib/core/error.hpp"
+#include "rbfib/surface/geometry_kernels.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -108,6 +109,30 @@ std::vector<Triangle> sphere_triangulation(const SphereSites& sites) {
   if (static_cast<index_t>(out.size()) != 2 * n - 4)
     throw NumericalError(Cause::solver, "sphere triangulation: " + to_text(out.size()) + " triangles, expected 2n - 4 = " +
                          to_text(2 * n - 4));
+  return out;
+}
+
+PolyhedronMeasures polyhedron_measures(const std::vector<Triangle>& tris, const std::vector<double>& X) {
+  const std::size_t n = X.size() / 3;
+  PolyhedronMeasures out;
+  double m[3] = {0, 0, 0};
+  for (const Triangle& t : tris) {
+    double a[3], b[3], d[3], bxd[3], e1[3], e2[3], nn[3];
+    for (int k = 0; k < 3; ++k) {
+      a[k] = X[k * n + t[0]];
+      b[k] = X[k * n + t[1]];
+      d[k] = X[k * n + t[2]];
+      e1[k] = b[k] - a[k];
+      e2[k] = d[k] - a[k];
+    }
+    cross3(b, d, bxd);
+    const double v = dot3(a, bxd) / 6;  // the tetrahedron (0, a, b, d)
+    out.volume += v;
+    for (int k = 0; k < 3; ++k) m[k] += v * (a[k] + b[k] + d[k]) / 4;
+    cross3(e1, e2, nn);
+    out.area += 0.5 * std::sqrt(dot3(nn, nn));
+  }
+  for (int k = 0; k < 3; ++k) out.centroid[k] = m[k] / out.volume;
   return out;
 }
 

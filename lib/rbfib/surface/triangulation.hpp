@@ -16,4 +16,13 @@ using Triangle = std::array<index_t, 3>;
 /// NumericalError if the hull is not a closed triangulation of every site.
 std::vector<Triangle> sphere_triangulation(const SphereSites& sites);
 
+/// The enclosed volume, the area and the volume centroid of the closed triangulated surface X
+/// (n x 3 column-major, outward triangles): sums over the tetrahedra (0, a, b, c) and the flat
+/// triangles (LDSM's piecewise-linear surface).
+struct PolyhedronMeasures {
+  double volume = 0, area = 0;
+  std::array<double, 3> centroid{0, 0, 0};
+};
+PolyhedronMeasures polyhedron_measures(const std::vector<Triangle>& tris, const std::vector<double>& X);
+
 }  // namespace rbfib::surface
