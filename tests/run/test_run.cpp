@@ -131,6 +131,23 @@ TEST(RunLoop, ANumericalStopKeepsTheLastGoodStateItsMessageAndItsCause) {
   EXPECT_EQ(again.progress().sitting_steps, 0);
 }
 
+TEST(RunLoop, AStopFoundByAHookSaysAfterWhichStep) {
+  // A measurement of the new state that finds it broken stops the run with the step and the time.
+  Options o;
+  o.t_end = 4 * units::us;
+  Hooks h;
+  h.after_step = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport* r, SeriesSet&) {
+    if (r && ib.step_count() == 3) throw NumericalError(Cause::inverted_cell, "cell 0 turned inside out");
+  };
+  run::Run run(sphere_scene(), "sphere", o, h);
+  const Progress p = run.evolve();
+  EXPECT_EQ(p.status, RunStatus::stopped);
+  EXPECT_EQ(*p.stop_cause, Cause::inverted_cell);
+  EXPECT_EQ(p.clock.step, 3);
+  EXPECT_NE(p.stop_message.find("after step 3 at t = "), std::string::npos) << p.stop_message;
+  EXPECT_NE(p.stop_message.find("turned inside out"), std::string::npos) << p.stop_message;
+}
+
 TEST(RunLoop, CadencesBySimulatedTimeFireAtItsMultiples) {
   const std::string text = sphere_scene("0.4 us", "4 us");
   Options o;

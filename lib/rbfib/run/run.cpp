@@ -164,9 +164,13 @@ Progress Run::evolve(long max_steps) {
       const long step = ib_.step_count();
       const double t = ib_.time();
       const bool last = t >= options_.t_end * (1 - 1e-12);
-      if (sample_due(step, t, t1) || last) sample(&report);
-      if (hooks_.after_step) hooks_.after_step(ib_, &report, record_.series);
-      if (hooks_.snapshot && snapshot_due(step, t, t1)) hooks_.snapshot(ib_);
+      try {  // a hook that measures the new state may find it broken (an inverted cell): say where
+        if (sample_due(step, t, t1) || last) sample(&report);
+        if (hooks_.after_step) hooks_.after_step(ib_, &report, record_.series);
+        if (hooks_.snapshot && snapshot_due(step, t, t1)) hooks_.snapshot(ib_);
+      } catch (const NumericalError& e) {
+        throw NumericalError(e.cause(), "after step " + to_text(step) + " at t = " + to_text(t) + " s: " + e.what());
+      }
       if (last) record_.status = RunStatus::finished;
       else if (checkpoint_due(step, t, t1)) checkpoint();
       if (hooks_.progress && progress_due(step, t, t1)) hooks_.progress(progress());
