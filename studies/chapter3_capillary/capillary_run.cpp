@@ -21,32 +21,6 @@ namespace rbfib::capillary {
 
 namespace {
 
-/// Volume, area and volume centroid of a closed triangulated surface X (n x 3 column-major).
-void polyhedron(const std::vector<surface::Triangle>& tris, const std::vector<double>& X, double c[3], double& volume,
-                double& area) {
-  const std::size_t n = X.size() / 3;
-  double mo[3] = {0, 0, 0};
-  volume = 0;
-  area = 0;
-  for (const auto& t : tris) {
-    double a[3], b[3], d[3], bxd[3], e1[3], e2[3], nn[3];
-    for (int k = 0; k < 3; ++k) {
-      a[k] = X[k * n + t[0]];
-      b[k] = X[k * n + t[1]];
-      d[k] = X[k * n + t[2]];
-      e1[k] = b[k] - a[k];
-      e2[k] = d[k] - a[k];
-    }
-    surface::cross3(b, d, bxd);
-    const double v = surface::dot3(a, bxd) / 6;  // the tetrahedron (0, a, b, d)
-    volume += v;
-    for (int k = 0; k < 3; ++k) mo[k] += v * (a[k] + b[k] + d[k]) / 4;
-    surface::cross3(e1, e2, nn);
-    area += 0.5 * std::sqrt(surface::dot3(nn, nn));
-  }
-  for (int k = 0; k < 3; ++k) c[k] = mo[k] / volume;
-}
-
 /// Area-weighted vertex normals of the triangulated surface X (n x 3), unit length.
 std::vector<double> vertex_normals(const std::vector<surface::Triangle>& tris, const std::vector<double>& X) {
   const std::size_t n = X.size() / 3;
@@ -256,7 +230,10 @@ struct Run::Impl {
         if (view_due(k)) shvd_view(batch, out, v);
       } else {
         const std::vector<double>& X = ib.shell(0).shell().X;
-        polyhedron(eval->tris, X, c, volume, area);
+        const surface::PolyhedronMeasures pm = surface::polyhedron_measures(eval->tris, X);
+        volume = pm.volume;
+        area = pm.area;
+        for (int d = 0; d < 3; ++d) c[d] = pm.centroid[d];
         if (view_due(k)) ldsm_view(X, mechanics::ldsm_forces("red cell (LDSM)", eval->tris, Zc, X, energies).F, v);
       }
       if (view_due(k)) {
