@@ -23,8 +23,9 @@
 // to t = 4; Table 1 on eta = 32, 48 for a 1 s contraction (the ratio is one of per-step costs).
 // Full: the paper's eta = 32, 48, 64 (references 48, 72, 96); Fig. 4 with
 // n = 8,281 to t = 15; Table 1 on eta = 32, 48, 64, 72 for the 15 s contraction. At full scale each
-// finished run is kept in the run directory (run_<label>.txt) and taken from there when the same
-// command is run again, so the full scale can be completed over several sittings.
+// run is kept in the run directory (run_<label>.h5, the library's run loop's checkpoint): a run the
+// sitting (--sitting) leaves unfinished continues from there, and a finished one is read back, when
+// the same command is run again, so the full scale can be completed over several sittings.
 //
 // Evaluation sites (reference/chapter3_dynamics.yaml, conventions): Bauer spirals (dissertation
 // eq. 5.1) of n = 2 eta^2 + 1 sites (odd: the middle site is exactly at (1, 0, 0), the material
