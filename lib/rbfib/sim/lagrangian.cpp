@@ -204,6 +204,7 @@ void LdsmShellSet::locate(ib::Interaction& ib) {
   Xd_.resize(X.size());
   thrust::copy(X.begin(), X.end(), Xd_.begin());
   ib.sort(ptr(Xd_), index_t(X.size() / 3), at_);
+  predicted_ = false;
 }
 
 void LdsmShellSet::interpolate_start(ib::Interaction& ib, const VectorField& u) {
@@ -214,6 +215,7 @@ void LdsmShellSet::interpolate_start(ib::Interaction& ib, const VectorField& u) 
 void LdsmShellSet::predict(double c) {
   if (c == 0) return;
   for (std::size_t i = 0; i < shell_.X.size(); ++i) shell_.X[i] = X0_[i] + c * U_[i];
+  predicted_ = true;
 }
 
 double LdsmShellSet::compute_force() {
@@ -225,8 +227,7 @@ double LdsmShellSet::compute_force() {
 void LdsmShellSet::spread(ib::Interaction& ib, ib::Spreading algorithm, VectorField& f, VectorField& scratch) {
   Fd_.resize(F_.size());
   thrust::copy(F_.begin(), F_.end(), Fd_.begin());
-  const bool moved = shell_.X != X0_;  // predicted: spread from X*, sorted anew
-  if (moved || algorithm != ib::Spreading::binned) {
+  if (predicted_ || algorithm != ib::Spreading::binned) {  // predicted: spread from X*, sorted anew
     thrust::copy(shell_.X.begin(), shell_.X.end(), Xd_.begin());
     spread_into(ib, algorithm, Xd_, Fd_, at_, f, scratch);
     return;
@@ -238,7 +239,7 @@ void LdsmShellSet::interpolate_end(ib::Interaction& ib, const VectorField& u, bo
   if (at_predicted) {
     thrust::copy(shell_.X.begin(), shell_.X.end(), Xd_.begin());
     ib.sort(ptr(Xd_), index_t(shell_.X.size() / 3), at_);
-  } else if (shell_.X != X0_) {
+  } else if (predicted_) {
     thrust::copy(X0_.begin(), X0_.end(), Xd_.begin());  // back to X^n
     ib.sort(ptr(Xd_), index_t(X0_.size() / 3), at_);
   }

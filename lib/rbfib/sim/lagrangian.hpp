@@ -177,6 +177,7 @@ class LdsmShellSet final : public LagrangianSet {
   std::vector<double> X0_, F_, U_;  // X^n, forces, velocities (host)
   dvec Xd_, Fd_, Ud_;               // device copies for the interaction
   ib::SortedPoints at_;             // where the vertices are sorted (X^n, or X* once predicted)
+  bool predicted_ = false;          // whether X holds X* (moved from X^n) in this step
 };
 
 }  // namespace rbfib::sim
