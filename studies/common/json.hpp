@@ -1,5 +1,7 @@
 #pragma once
 // A small JSON value for the studies' machine-readable results (results.json). Writing only.
+#include <cmath>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <ostream>
@@ -42,5 +44,11 @@ class Json {
  private:
   std::variant<std::nullptr_t, bool, double, std::string, Array, Object> v_;
 };
+
+/// One row of a results table: row({x, y, "label"}).
+inline Json row(std::initializer_list<Json> values) { return Json(Json::Array(values)); }
+
+/// A number, or null when it is not finite (JSON has no NaN or infinity).
+inline Json number(double x) { return std::isfinite(x) ? Json(x) : Json(); }
 
 }  // namespace rbfib::study
