@@ -34,7 +34,6 @@ using namespace rbfib::study;
 
 namespace {
 
-Json row(std::initializer_list<Json> values) { return Json(Json::Array(values)); }
 
 using rbfib::study::table;
 

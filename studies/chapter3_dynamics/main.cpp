@@ -65,7 +65,6 @@ using st::Json;
 
 namespace {
 
-Json::Array row(std::initializer_list<Json> xs) { return Json::Array(xs); }
 Json num(double x) { return std::isfinite(x) ? Json(x) : Json(); }
 
 

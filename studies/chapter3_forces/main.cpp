@@ -52,7 +52,6 @@ using rbfib::study::Json;
 
 namespace {
 
-Json::Array row(std::initializer_list<Json> xs) { return Json::Array(xs); }
 
 using rbfib::study::table;
 

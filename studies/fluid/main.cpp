@@ -35,7 +35,6 @@ namespace {
 
 const char* short_name(TimeIntegrator i) { return i == TimeIntegrator::backward_forward_euler ? "BFE" : "Peskin"; }
 
-Json row(std::initializer_list<Json> values) { return Json(Json::Array(values)); }
 
 using rbfib::study::table;
 
