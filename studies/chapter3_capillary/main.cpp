@@ -57,6 +57,7 @@ namespace {
 constexpr double um = 1e-4;      // cm
 constexpr double pN_um = 1e-11;  // erg (1 pN um = 1e-18 J = 1e-11 erg)
 
+using rbfib::study::row;
 Json num(double x) { return std::isfinite(x) ? Json(x) : Json(); }
 
 /// The scale's parameters.

@@ -65,6 +65,7 @@ using st::Json;
 
 namespace {
 
+using rbfib::study::row;
 Json num(double x) { return std::isfinite(x) ? Json(x) : Json(); }
 
 

@@ -51,6 +51,7 @@ namespace st = rbfib::study;
 using rbfib::study::Json;
 
 namespace {
+using rbfib::study::row;
 
 
 using rbfib::study::table;
