@@ -31,6 +31,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <unistd.h>
 
@@ -109,7 +110,9 @@ StepEstimate estimate_step(const scene::Scene& s) {
 
 void print_check(const scene::Scene& s) {
   std::cout << scene::describe(s);
-  const std::vector<std::string> near = scene::check_contacts(s);  // throws InputError for overlaps
+  const std::optional<scene::StartingState> start =
+      s.start.checkpoint.empty() ? std::nullopt : std::optional<scene::StartingState>(io::read_starting_state(s));
+  const std::vector<std::string> near = scene::check_contacts(s, start ? &*start : nullptr);  // throws InputError for overlaps
   std::cout << "contacts: no cell overlaps another cell, a wall or a point set; "
             << (near.empty() ? "every pair is at least 2h apart\n" : "closer than 2h:\n");
   for (const std::string& line : near) std::cout << "  " << line << "\n";

@@ -96,9 +96,9 @@ std::string um_text(double x) { return num(x / um) + " um"; }
 
 /// The scene of the init run or of a run from a starting state (docs/scenes.md).
 std::string scene_text(const Setup& s, const Wall& w, const std::vector<cells::Placement>& red, const std::vector<cells::Placement>& platelets,
-                       double t_end, const std::string& what) {
+                       double t_end, const std::string& what, const std::string& start = "", bool keep_red = false) {
   std::string types, cells_text;
-  if (!red.empty())
+  if (!red.empty() || keep_red)
     types += "  - {name: red cell, preset: red_cell, data_sites: " + to_text(s.rbc_nd) + ", sample_sites: " + to_text(s.rbc_ns) + "}\n";
   if (!platelets.empty())
     types += "  - {name: platelet, preset: platelet, data_sites: " + to_text(s.plt_n) + ", sample_sites: " + to_text(s.plt_n) + "}\n";
@@ -113,7 +113,8 @@ std::string scene_text(const Setup& s, const Wall& w, const std::vector<cells::P
          "fluid: {density: 1 g/cm^3, viscosity: 1 cP}\n"
          "grid: {h: " + um_text(s.h) + "}\n"
          "time: {integrator: backward_forward_euler, dt: " + num(s.dt / units::ns) + " ns, end: " + num(t_end / us) + " us}\n"
-         "ib: {kernel: bspline3}\n"
+         "ib: {kernel: bspline3}\n" +
+         (start.empty() ? std::string() : "start: {checkpoint: " + start + (keep_red ? ", keep: [red cell]" : "") + "}\n") +
          "cell_types:\n" + types + "cells:\n" + cells_text +
          "tethered_points:\n  - {name: endothelium, spiral: " + spiral + ", k: 2.5 dyn/cm, eta: 2.5e-7 dyn s/cm}\n";
 }
@@ -151,20 +152,6 @@ std::vector<double> velocity_profile(const sim::ImmersedBoundary& ib) {
         for (int i = 0; i < nx; ++i) u[std::size_t(j)] += flow_dir[std::size_t(a)] * v[std::size_t(i + nx * (j + ny * index_t(k)))] / (double(nx) * nz);
   }
   return u;
-}
-
-/// The starting state of a run: the init's fluid, red cells (when kept) and endothelium, with the
-/// run's platelets (the last batch of the freshly built step) added.
-void start_from(sim::ImmersedBoundary& ib, const io::Checkpoint& start, bool with_red_cells) {
-  sim::ImmersedBoundary::Carried c = ib.carried();
-  const dvec platelets = c.batches.back();
-  c.fluid = start.state.fluid;
-  c.batches.clear();
-  if (with_red_cells) c.batches.push_back(start.state.batches.at(0));
-  c.batches.push_back(platelets);
-  c.points = start.state.points;
-  c.clock = start.state.clock;
-  ib.restore(c);
 }
 
 /// What a run with platelets records at each sample (a row of numbers in the run's samples file).
@@ -447,7 +434,8 @@ int main(int argc, char** argv) {
         const std::vector<double> batch = batch_layout(rbc, layout.red_cells);
         PlateletSpec ps;
         ps.min_separation = 3.1 * um + 4 * s.h;
-        const std::vector<double> E = host(scene::parse_scene(init_text, "init").point_sets.at(0).X);
+        const scene::Scene init_scene = scene::parse_scene(init_text, "init");
+        const std::vector<double> E = scene::point_positions(init_scene.point_sets.at(0).surface, init_scene.grid.length);
         const PlateletPlacement ex = place_platelets(plt, box, E, batch, rbc.n, 2, ps, erng);
         std::ofstream(opt.out_dir + "/example_" + w.name + ".yaml")
             << scene_text(s, w, layout.red_cells, ex.platelets, 40 * us, "an example: the layout of the procedure with platelets placed against it")
@@ -511,10 +499,9 @@ int main(int argc, char** argv) {
           if (!with_red && w.bump == 0) continue;  // the seed removes the red cells over the bumpy wall only
           const std::string tag = w.name + (with_red ? "" : "_no_red_cells") + "_" + to_text(k);
           const double t_end = starts[k] + run_window;
-          const std::string text =
-              scene_text(s, w, with_red ? layout.red_cells : std::vector<cells::Placement>{}, placed.platelets, t_end, "a run from a starting state");
+          const std::string text = scene_text(s, w, {}, placed.platelets, t_end, "a run from a starting state",
+                                              start_file + to_text(k) + ".h5", with_red);
           st::SceneRunHooks h;
-          h.prepare = [&](sim::ImmersedBoundary& ib) { start_from(ib, start, with_red); };
           h.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample_run(ib, with_red, box, tracked).row(); };
           // Snapshots for ParaView (the first starting state's runs): at the start, every tenth of the run, at the end.
           std::unique_ptr<io::SnapshotWriter> writer;

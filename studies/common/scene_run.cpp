@@ -25,7 +25,6 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   o.sample_every = {every, 0, 0};
   run::Hooks h;
   h.built = hooks.at_start;
-  h.prepare = hooks.prepare;
   if (hooks.after_step || hooks.record)
     h.after_step = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport*, run::SeriesSet& series) {
       if (hooks.after_step) hooks.after_step(ib);

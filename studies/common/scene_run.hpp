@@ -22,10 +22,6 @@ namespace rbfib::study {
 struct SceneRunHooks {
   /// Called once after the scene is built, at t = 0 (before a checkpoint is restored).
   std::function<void(const sim::ImmersedBoundary&)> at_start;
-  /// Called once for a fresh run (not one continued from its checkpoint), before the first
-  /// sample: may set the starting state, e.g. another run's state with cells added or removed.
-  /// With it, the scene is built without scene::check_contacts on its placements.
-  std::function<void(sim::ImmersedBoundary&)> prepare;
   /// One row of numbers describing the state; `report` is null for the row at the start.
   std::function<std::vector<double>(const sim::ImmersedBoundary&, const sim::IbStepReport* report)> sample;
   /// Called after every step (and once at the start of a fresh run).

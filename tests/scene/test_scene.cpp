@@ -110,7 +110,7 @@ TEST(Scene, TheValuesArriveInCgs) {
   EXPECT_NEAR(s.cells[0].placement.angle, 1.5707963267948966, 1e-15);
   EXPECT_NEAR(s.cells[0].force[1], 1e-9, 1e-24);
   ASSERT_EQ(s.point_sets.size(), 1u);
-  EXPECT_EQ(s.point_sets[0].X.size(), 3u * 32 * 30);
+  EXPECT_EQ(point_positions(s.point_sets[0].surface, s.grid.length).size(), 3u * 32 * 30);
   EXPECT_EQ(s.diagnostics_every, 5);
   // It builds and steps.
   sim::ImmersedBoundary ib = build(s);
@@ -240,7 +240,7 @@ TEST(Scene, TheEndotheliumOfEquation55LiesOnTheToroidalSpiral) {
   const std::string bumpy = replaced(channel_scene, "plane: {y: 1 um, points: [32, 30]}", "spiral: {y: 0.75 um, bump: 1 um, points: 16000}");
   const Scene s = parse_scene(bumpy, "bumpy");
   ASSERT_EQ(s.point_sets.size(), 1u);
-  const host_vector<double> X = s.point_sets[0].X;
+  const std::vector<double> X = point_positions(s.point_sets[0].surface, s.grid.length);
   const std::size_t N = 16000;
   ASSERT_EQ(X.size(), 3 * N);
   const double um = 1e-4;

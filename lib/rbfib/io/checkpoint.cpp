@@ -236,4 +236,20 @@ Checkpoint read_checkpoint(const std::string& path) {
   return k;
 }
 
+scene::StartingState read_starting_state(const scene::Scene& s) {
+  Checkpoint k = read_checkpoint(s.start.checkpoint);
+  const scene::Scene from = scene::parse_scene(k.scene_yaml, s.start.checkpoint);
+  scene::StartingState start;
+  start.state = std::move(k.state);
+  start.batch_types = scene::batch_types(from);
+  start.cells = from.grid.cells;
+  return start;
+}
+
+sim::ImmersedBoundary build(const scene::Scene& s) {
+  if (s.start.checkpoint.empty()) return scene::build(s);
+  const scene::StartingState start = read_starting_state(s);
+  return scene::build(s, &start);
+}
+
 }  // namespace rbfib::io

@@ -19,6 +19,7 @@
 // Written atomically: to PATH.tmp, flushed and fsynced, then renamed over PATH (and the
 // directory fsynced), so a kill at any moment leaves the previous checkpoint whole.
 #include "rbfib/core/error.hpp"
+#include "rbfib/scene/scene.hpp"
 #include "rbfib/sim/ib_step.hpp"
 
 #include <map>
@@ -59,5 +60,12 @@ struct Checkpoint {
 
 /// Reads a checkpoint; throws InputError naming the file and what is missing or malformed.
 Checkpoint read_checkpoint(const std::string& path);
+
+/// The state a scene starts from (scene.start.checkpoint): the checkpoint's state, the cell type
+/// of each of its batches and its grid (from the scene text it keeps).
+scene::StartingState read_starting_state(const scene::Scene& scene);
+
+/// Builds a scene's coupled step (scene::build), from its start when it has one.
+sim::ImmersedBoundary build(const scene::Scene& scene);
 
 }  // namespace rbfib::io

@@ -73,7 +73,7 @@ Run::Run(scene::Scene scene, Options options, Hooks hooks)
       source_(scene_->source),
       options_(std::move(options)),
       hooks_(std::move(hooks)),
-      ib_(scene::build(*scene_, !hooks_.prepare)) {
+      ib_(io::build(*scene_)) {
   start();
 }
 
@@ -101,7 +101,6 @@ void Run::start() {
   }
   if (!continued_) {
     record_.label = options_.label;
-    if (hooks_.prepare) hooks_.prepare(ib_);
     sample(nullptr);
     if (hooks_.after_step) hooks_.after_step(ib_, nullptr, record_.series);
     if (hooks_.snapshot) hooks_.snapshot(ib_);

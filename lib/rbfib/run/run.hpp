@@ -78,9 +78,6 @@ struct Hooks {
   /// Called once after the scene is built, at t = 0, before a checkpoint is restored (to read the
   /// starting state whether or not the run continues).
   std::function<void(const sim::ImmersedBoundary&)> built;
-  /// Called once for a fresh run (not one continued from its checkpoint), before the first
-  /// sample: may set the starting state (another run's state, cells added or removed).
-  std::function<void(sim::ImmersedBoundary&)> prepare;
   /// Appends this moment's samples to the series; `report` is null at the run's start.
   std::function<void(const sim::ImmersedBoundary&, const sim::IbStepReport* report, SeriesSet&)> sample;
   /// Called after every step (after its sample, if one was due) and once at the start of a fresh
@@ -98,8 +95,8 @@ class Run {
  public:
   /// Builds the scene `text` (its origin names it in messages) and, when options.checkpoint names
   /// an existing checkpoint of the same text, restores it with its series and status. A
-  /// checkpoint of another scene text is left for evolve() to replace. With hooks.prepare the
-  /// scene is built without its contact check: the hook's caller checks the state it sets.
+  /// checkpoint of another scene text is left for evolve() to replace. A scene with a start
+  /// (scene::Start) begins from its starting state (io::build).
   Run(const std::string& text, const std::string& origin, Options options, Hooks hooks);
   /// The same for a scene already read (its text: scene.source).
   Run(scene::Scene scene, Options options, Hooks hooks);

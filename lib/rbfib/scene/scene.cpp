@@ -12,6 +12,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -295,16 +296,12 @@ cells::ForceModel read_model(const Fields& f) {
 }
 
 CellTypeEntry read_type(const Fields& f) {
-  CellTypeEntry t;
-  t.preset = f.choice("preset", {"red_cell", "platelet", "skalak_sphere", "chapter3_red_cell"});
-  auto sites = [&](const char* key, long fallback) { return f.has(key) ? index_t(f.integer(key, 16, 200000)) : index_t(fallback); };
-  if (t.preset == "red_cell") t.spec = cells::red_cell_spec(sites("data_sites", 2500), sites("sample_sites", 10000));
-  if (t.preset == "platelet") t.spec = cells::platelet_spec(sites("data_sites", 900), sites("sample_sites", 900));
-  if (t.preset == "skalak_sphere")
-    t.spec = cells::skalak_sphere_spec(f.positive("radius", "um"), sites("data_sites", 625), sites("sample_sites", 880));
-  if (t.preset == "chapter3_red_cell")
-    t.spec = cells::chapter3_red_cell_spec(f.has("degree") ? int(f.integer("degree", 1, 40)) : 19, sites("sample_sites", 8281));
-  t.spec.name = f.string("name");
+  const std::string preset = f.choice("preset", {"red_cell", "platelet", "skalak_sphere", "chapter3_red_cell"});
+  auto sites = [&](const char* key) { return f.has(key) ? index_t(f.integer(key, 16, 200000)) : index_t(0); };
+  const index_t data = preset == "chapter3_red_cell" ? 0 : sites("data_sites"), sample = sites("sample_sites");
+  const double radius = preset == "skalak_sphere" ? f.positive("radius", "um") : 0.0;
+  const int degree = preset == "chapter3_red_cell" && f.has("degree") ? int(f.integer("degree", 1, 40)) : 19;
+  CellTypeEntry t = cell_type(f.string("name"), preset, data, sample, radius, degree);
   if (f.has("model")) t.spec.model = read_model(f.map("model"));
   f.finish();
   return t;
@@ -358,53 +355,33 @@ CellEntry read_cell(const Fields& f, const Scene& s) {
 /// Appendix B, (theta_i, phi_i) = (mod(ceil(sqrt N) phi_i, 2 pi), 2 pi (i - 1)/N), on the surface
 /// of eq. 5.5, X = (L_p theta / 2 pi, y(theta, phi), L_q phi / 2 pi) with
 /// y = y0 + bump cos^2(theta - phi) sin^2(phi / 2) (bump 0, the default: the flat wall y = y0).
-std::vector<double> read_point_surface(const Fields& f, const Scene& s) {
-  const bool spiral = f.has("spiral");
-  if (spiral == f.has("plane"))
-    throw InputError(f.path(), spiral ? "both plane and spiral" : "(neither)", "give a plane or a spiral");
-  const Fields g = f.map(spiral ? "spiral" : "plane");
-  int normal = -1;
+PointSurface read_point_surface(const Fields& f, const Scene& s) {
+  PointSurface p;
+  p.spiral = f.has("spiral");
+  if (p.spiral == f.has("plane"))
+    throw InputError(f.path(), p.spiral ? "both plane and spiral" : "(neither)", "give a plane or a spiral");
+  const Fields g = f.map(p.spiral ? "spiral" : "plane");
+  p.normal = -1;
   for (int d = 0; d < 3; ++d)
     if (g.has(axis_name[d])) {
-      if (normal >= 0) throw InputError(g.at(axis_name[d]), "", "the surface's position is given by one coordinate (x, y or z)");
-      normal = d;
+      if (p.normal >= 0) throw InputError(g.at(axis_name[d]), "", "the surface's position is given by one coordinate (x, y or z)");
+      p.normal = d;
     }
-  if (normal < 0) throw InputError(g.at("y"), "(missing)", "give the surface's position along one axis, e.g. y: 1 um");
-  const double at = g.quantity(axis_name[normal], "um");
-  if (!(at >= 0 && at <= s.grid.length[normal]))
-    throw InputError(g.at(axis_name[normal]), to_text(at / units::um) + " um", "lies outside the box");
-  const int a = normal == 0 ? 1 : 0, b = normal == 2 ? 1 : 2;  // the tangential axes, a < b
-  const double La = s.grid.length[a], Lb = s.grid.length[b];
-  std::vector<double> X;
-  if (!spiral) {
+  if (p.normal < 0) throw InputError(g.at("y"), "(missing)", "give the surface's position along one axis, e.g. y: 1 um");
+  p.at = g.quantity(axis_name[p.normal], "um");
+  if (!(p.at >= 0 && p.at <= s.grid.length[p.normal]))
+    throw InputError(g.at(axis_name[p.normal]), to_text(p.at / units::um) + " um", "lies outside the box");
+  if (!p.spiral) {
     const std::vector<long> counts = g.integers("points", 2, 1, 4096);
-    const int n[2] = {int(counts[0]), int(counts[1])};
-    g.finish();
-    const index_t total = index_t(n[0]) * n[1];
-    X.resize(static_cast<std::size_t>(3 * total));
-    for (int i = 0; i < n[0]; ++i)
-      for (int j = 0; j < n[1]; ++j) {
-        const index_t q = index_t(i) * n[1] + j;
-        X[a * total + q] = (i + 0.5) * La / n[0];
-        X[b * total + q] = (j + 0.5) * Lb / n[1];
-        X[normal * total + q] = at;
-      }
-    return X;
+    p.lattice = {int(counts[0]), int(counts[1])};
+  } else {
+    p.points = index_t(g.integer("points", 1, 4096L * 4096L));
+    p.bump = g.has("bump") ? g.quantity("bump", "um") : 0.0;
+    if (!(p.bump >= 0 && p.at + p.bump <= s.grid.length[p.normal]))
+      throw InputError(g.at("bump"), to_text(p.bump / units::um) + " um", "must be >= 0 and keep the surface inside the box");
   }
-  const index_t N = index_t(g.integer("points", 1, 4096L * 4096L));
-  const double bump = g.has("bump") ? g.quantity("bump", "um") : 0.0;
-  if (!(bump >= 0 && at + bump <= s.grid.length[normal]))
-    throw InputError(g.at("bump"), to_text(bump / units::um) + " um", "must be >= 0 and keep the surface inside the box");
   g.finish();
-  const EndotheliumSurface surface{at, bump, La, Lb};
-  const surface::SphereSites t = surface::toroidal_spiral(N);  // lambda: theta, theta: phi
-  X.resize(static_cast<std::size_t>(3 * N));
-  for (index_t i = 0; i < N; ++i) {
-    X[a * N + i] = La * t.lambda[i] / (2 * pi);
-    X[b * N + i] = Lb * t.theta[i] / (2 * pi);
-    X[normal * N + i] = surface.height(X[a * N + i], X[b * N + i]);
-  }
-  return X;
+  return p;
 }
 
 }  // namespace
@@ -426,14 +403,92 @@ std::array<double, 3> EndotheliumSurface::normal(double s, double t) const {
   return {-ds / norm, 1 / norm, -dt / norm};
 }
 
-namespace {
+CellTypeEntry cell_type(const std::string& name, const std::string& preset, index_t data_sites, index_t sample_sites, double radius,
+                        int degree) {
+  auto or_default = [](index_t n, index_t fallback) { return n > 0 ? n : fallback; };
+  CellTypeEntry t;
+  t.preset = preset;
+  if (preset == "red_cell") t.spec = cells::red_cell_spec(or_default(data_sites, 2500), or_default(sample_sites, 10000));
+  else if (preset == "platelet") t.spec = cells::platelet_spec(or_default(data_sites, 900), or_default(sample_sites, 900));
+  else if (preset == "skalak_sphere") {
+    t.radius = radius;
+    t.spec = cells::skalak_sphere_spec(radius, or_default(data_sites, 625), or_default(sample_sites, 880));
+  } else if (preset == "chapter3_red_cell") {
+    t.degree = degree;
+    t.spec = cells::chapter3_red_cell_spec(degree, or_default(sample_sites, 8281));
+  } else
+    throw InputError("cell type '" + name + "'", preset, "is not a preset: red_cell, platelet, skalak_sphere, chapter3_red_cell");
+  t.spec.name = name;
+  return t;
+}
 
-sim::TetheredPoints read_points(const Fields& f, const Scene& s) {
+std::vector<double> point_positions(const PointSurface& p, const std::array<double, 3>& L) {
+  const int a = p.normal == 0 ? 1 : 0, b = p.normal == 2 ? 1 : 2;  // the tangential axes, a < b
+  std::vector<double> X;
+  if (!p.spiral) {
+    const index_t total = index_t(p.lattice[0]) * p.lattice[1];
+    X.resize(static_cast<std::size_t>(3 * total));
+    for (int i = 0; i < p.lattice[0]; ++i)
+      for (int j = 0; j < p.lattice[1]; ++j) {
+        const index_t q = index_t(i) * p.lattice[1] + j;
+        X[a * total + q] = (i + 0.5) * L[a] / p.lattice[0];
+        X[b * total + q] = (j + 0.5) * L[b] / p.lattice[1];
+        X[p.normal * total + q] = p.at;
+      }
+    return X;
+  }
+  const index_t N = p.points;
+  const EndotheliumSurface surface{p.at, p.bump, L[a], L[b]};
+  const surface::SphereSites t = surface::toroidal_spiral(N);  // lambda: theta, theta: phi
+  X.resize(static_cast<std::size_t>(3 * N));
+  for (index_t i = 0; i < N; ++i) {
+    X[a * N + i] = L[a] * t.lambda[i] / (2 * pi);
+    X[b * N + i] = L[b] * t.theta[i] / (2 * pi);
+    X[p.normal * N + i] = surface.height(X[a * N + i], X[b * N + i]);
+  }
+  return X;
+}
+
+sim::TetheredPoints tethered_points(const PointSetEntry& e, const std::array<double, 3>& box) {
   sim::TetheredPoints p;
-  p.name = f.string("name");
-  const std::vector<double> X = read_point_surface(f, s);
+  p.name = e.name;
+  const std::vector<double> X = point_positions(e.surface, box);
   p.X = dvec(X.begin(), X.end());
   p.anchors = p.X;
+  p.k = e.k;
+  p.eta = e.eta;
+  return p;
+}
+
+std::array<std::array<WallMotion, 2>, 3> walls_at_rest() {
+  std::array<std::array<WallMotion, 2>, 3> w{};
+  for (int d = 0; d < 3; ++d) w[d][0].axis = w[d][1].axis = d;
+  return w;
+}
+
+namespace {
+
+void read_start(const Fields& f, Scene& s) {
+  s.start.checkpoint = f.string("checkpoint");
+  if (s.start.checkpoint.empty()) throw InputError(f.at("checkpoint"), "(empty)", "name a checkpoint file");
+  if (s.initial_shear) throw InputError("domain.initial_flow", "shear", "a scene with a start takes its flow from start.checkpoint");
+  if (f.has("keep")) {
+    const YAML::Node k = f.get("keep");
+    if (!k.IsSequence()) throw InputError(f.at("keep"), Fields::text(k), "expected a list of cell type names");
+    for (std::size_t i = 0; i < k.size(); ++i) {
+      const std::string field = f.at("keep") + "[" + std::to_string(i) + "]", name = Fields::scalar(k[i], field);
+      if (std::none_of(s.types.begin(), s.types.end(), [&](const CellTypeEntry& t) { return t.spec.name == name; }))
+        throw InputError(field, name, "is not the name of an entry of cell_types");
+      s.start.keep.push_back(name);
+    }
+  }
+  f.finish();
+}
+
+PointSetEntry read_points(const Fields& f, const Scene& s) {
+  PointSetEntry p;
+  p.name = f.string("name");
+  p.surface = read_point_surface(f, s);
   p.k = f.nonnegative("k", "dyn/cm");
   p.eta = f.nonnegative("eta", "dyn s/cm");
   f.finish();
@@ -481,8 +536,13 @@ Scene parse_scene(const std::string& yaml, const std::string& origin) {
         if (o.spec.name == e.spec.name) throw InputError(t.at("name"), e.spec.name, "names another cell type too");
       s.types.push_back(std::move(e));
     }
+  if (f.has("start")) read_start(f.map("start"), s);
   if (f.has("cells"))
-    for (const Fields& c : f.list_of_maps("cells")) s.cells.push_back(read_cell(c, s));
+    for (const Fields& c : f.list_of_maps("cells")) {
+      s.cells.push_back(read_cell(c, s));
+      if (std::find(s.start.keep.begin(), s.start.keep.end(), s.cells.back().type) != s.start.keep.end())
+        throw InputError(c.at("type"), s.cells.back().type, "its cells come from start.checkpoint (start.keep): add cells of another type");
+    }
   if (f.has("tethered_points"))
     for (const Fields& p : f.list_of_maps("tethered_points")) s.point_sets.push_back(read_points(p, s));
   if (f.has("output")) {
@@ -510,8 +570,48 @@ BoundaryVelocity boundary_velocity(const Scene& s) {
   return [walls](int a, int d, int side, double t, double, double, double) { return walls[d][side].at(t)[a]; };
 }
 
-std::vector<std::string> check_contacts(const Scene& s) {
+std::vector<std::string> batch_types(const Scene& s) {
+  std::vector<std::string> out;
+  for (const CellTypeEntry& t : s.types) {
+    const bool kept = std::find(s.start.keep.begin(), s.start.keep.end(), t.spec.name) != s.start.keep.end();
+    const bool placed = std::any_of(s.cells.begin(), s.cells.end(), [&](const CellEntry& c) { return c.type == t.spec.name; });
+    if (kept || placed) out.push_back(t.spec.name);
+  }
+  return out;
+}
+
+namespace {
+
+/// The batch of a starting state that holds the cells of type `type` (InputError if none does).
+const dvec& kept_batch(const StartingState& start, const std::string& type) {
+  const auto it = std::find(start.batch_types.begin(), start.batch_types.end(), type);
+  if (it == start.batch_types.end()) throw InputError("start.keep", type, "the starting state has no cells of this type");
+  return start.state.batches.at(std::size_t(it - start.batch_types.begin()));
+}
+
+/// The starting state must fit the scene: the same grid and the same tethered point sets.
+void check_start(const Scene& s, const StartingState& start) {
+  for (int d = 0; d < 3; ++d)
+    if (start.cells[d] != s.grid.cells[d])
+      throw InputError("start.checkpoint", s.start.checkpoint,
+                       "its grid has " + to_text(start.cells[d]) + " cells along " + axis_name[d] + ", the scene " + to_text(s.grid.cells[d]));
+  if (start.state.points.size() != s.point_sets.size())
+    throw InputError("start.checkpoint", s.start.checkpoint,
+                     "holds " + to_text(start.state.points.size()) + " tethered point sets, the scene " + to_text(s.point_sets.size()));
+  for (std::size_t k = 0; k < s.point_sets.size(); ++k)
+    if (start.state.points[k].size() != point_positions(s.point_sets[k].surface, s.grid.length).size())
+      throw InputError("tethered_points[" + to_text(k) + "]", s.point_sets[k].name, "has another number of points than in start.checkpoint");
+}
+
+}  // namespace
+
+std::vector<std::string> check_contacts(const Scene& s, const StartingState* start) {
+  if (s.start.checkpoint.empty() != !start)
+    throw InputError("start.checkpoint", s.start.checkpoint.empty() ? "(none)" : s.start.checkpoint,
+                     start ? "a starting state was given for a scene without a start" : "was not read (io::read_starting_state)");
+  if (start) check_start(s, *start);
   struct Placed {
+    std::string who, type;
     std::vector<double> X;  // data sites, n x 3
     index_t n = 0;
     const std::vector<surface::Triangle>* tris = nullptr;
@@ -532,12 +632,39 @@ std::vector<std::string> check_contacts(const Scene& s) {
     return o.str();
   };
   std::vector<Placed> cells;
+  auto bound = [](Placed& p) {  // the bounding sphere about the centroid of the data sites
+    for (index_t i = 0; i < p.n; ++i)
+      for (int d = 0; d < 3; ++d) p.center[d] += p.X[std::size_t(d * p.n + i)] / double(p.n);
+    for (index_t i = 0; i < p.n; ++i) {
+      double r2 = 0;
+      for (int d = 0; d < 3; ++d) r2 += std::pow(p.X[std::size_t(d * p.n + i)] - p.center[d], 2);
+      p.radius = std::max(p.radius, std::sqrt(r2));
+    }
+  };
+  if (start)
+    for (const std::string& type : s.start.keep) {
+      const host_vector<double> state(kept_batch(*start, type).begin(), kept_batch(*start, type).end());
+      const index_t n = index_t(reference.at(type).size() / 3), N = index_t(state.size()) / (6 * n);
+      for (index_t c = 0; c < N; ++c) {
+        Placed p;
+        p.who = "start: " + type + " " + to_text(c);
+        p.type = type;
+        p.n = n;
+        p.X.resize(std::size_t(3 * n));
+        for (int d = 0; d < 3; ++d)  // column d N + c of the n x 6N state (docs/math.md)
+          std::copy_n(state.begin() + std::ptrdiff_t((d * N + c) * n), n, p.X.begin() + std::ptrdiff_t(d * n));
+        p.tris = &tris.at(type);
+        bound(p);
+        cells.push_back(std::move(p));
+      }
+    }
   for (std::size_t c = 0; c < s.cells.size(); ++c) {
-    const std::string who = "cells[" + std::to_string(c) + "]";
     Placed p;
+    p.who = "cells[" + std::to_string(c) + "]";
+    p.type = s.cells[c].type;
     const std::vector<double>& ref = reference.at(s.cells[c].type);
     p.n = index_t(ref.size() / 3);
-    p.X = cells::placed(ref, p.n, s.cells[c].placement, who);
+    p.X = cells::placed(ref, p.n, s.cells[c].placement, p.who);
     p.tris = &tris.at(s.cells[c].type);
     p.center = s.cells[c].placement.center;
     for (index_t i = 0; i < p.n; ++i) {  // (the reader has checked that the cell lies between the walls)
@@ -563,7 +690,7 @@ std::vector<std::string> check_contacts(const Scene& s) {
       double dc = 0;
       for (int d = 0; d < 3; ++d) dc += std::pow(A.center[d] - B.center[d] - shift[d], 2);
       if (std::sqrt(dc) > A.radius + B.radius + 2 * hmin) continue;
-      const std::string pair = "cells[" + std::to_string(a) + "] and cells[" + std::to_string(b) + "]";
+      const std::string pair = A.who + " and " + B.who;
       // A's sites against B's image (B + shift), then the image's sites against A.
       for (int side = 0; side < 2; ++side) {
         const Placed &P = side ? B : A, &Q = side ? A : B;
@@ -576,8 +703,7 @@ std::vector<std::string> check_contacts(const Scene& s) {
           if (inside(Q, x)) first = std::min(first, i);
         }
         if (first < P.n)
-          throw InputError("cells[" + std::to_string(side ? b : a) + "]", "its data site " + std::to_string(first),
-                           "lies inside cells[" + std::to_string(side ? a : b) + "]: " + pair + " overlap");
+          throw InputError(P.who, "its data site " + std::to_string(first), "lies inside " + Q.who + ": " + pair + " overlap");
       }
       const surface::Closest c = surface::closest_points(A.X, A.n, B.X, B.n, shift);
       if (c.distance < 2 * hmin)
@@ -585,9 +711,10 @@ std::vector<std::string> check_contacts(const Scene& s) {
                        "): their kernels overlap and their forces mix");
     }
   for (std::size_t k = 0; k < s.point_sets.size(); ++k) {
-    const sim::TetheredPoints& P = s.point_sets[k];
-    const index_t n = index_t(P.X.size() / 3);
-    const host_vector<double> X(P.X.begin(), P.X.end());
+    const PointSetEntry& P = s.point_sets[k];
+    const std::vector<double> X =
+        start ? std::vector<double>(start->state.points[k].begin(), start->state.points[k].end()) : point_positions(P.surface, g.length);
+    const index_t n = index_t(X.size() / 3);
     for (std::size_t c = 0; c < cells.size(); ++c) {
       const Placed& C = cells[c];
       double closest = INFINITY;
@@ -598,7 +725,7 @@ std::vector<std::string> check_contacts(const Scene& s) {
         for (int d = 0; d < 3; ++d) x[d] += shift[d], r2 += std::pow(x[d] - C.center[d], 2);
         if (std::sqrt(r2) > C.radius + 2 * hmin) continue;
         if (inside(C, x))
-          throw InputError("cells[" + std::to_string(c) + "]", s.cells[c].type,
+          throw InputError(C.who, C.type,
                            "encloses point " + std::to_string(i) + " of tethered_points[" + std::to_string(k) + "] ('" + P.name + "')");
         for (index_t j = 0; j < C.n; ++j) {
           double e2 = 0;
@@ -607,15 +734,15 @@ std::vector<std::string> check_contacts(const Scene& s) {
         }
       }
       if (closest < 2 * hmin)
-        near.push_back("cells[" + std::to_string(c) + "] comes within " + um(closest) + " of tethered_points[" + std::to_string(k) +
+        near.push_back(C.who + " comes within " + um(closest) + " of tethered_points[" + std::to_string(k) +
                        "] ('" + P.name + "') (less than 2h = " + um(2 * hmin) + ")");
     }
   }
   return near;
 }
 
-sim::ImmersedBoundary build(const Scene& s, bool check_placements) {
-  if (check_placements) check_contacts(s);
+sim::ImmersedBoundary build(const Scene& s, const StartingState* start) {
+  check_contacts(s, start);
   const auto& walls = s.walls;
   sim::ImmersedBoundary ib(s.grid, s.fluid, s.fluid_options, boundary_velocity(s), s.ib);
   if (s.initial_shear) {
@@ -633,21 +760,35 @@ sim::ImmersedBoundary build(const Scene& s, bool check_placements) {
         return u;
       });
   }
-  for (const CellTypeEntry& t : s.types) {
+  std::vector<const dvec*> kept;  // per batch: its state in the start, or null
+  for (const std::string& name : batch_types(s)) {
+    const CellTypeEntry& t = *std::find_if(s.types.begin(), s.types.end(), [&](const CellTypeEntry& e) { return e.spec.name == name; });
     std::vector<cells::Placement> placements;
     std::vector<std::array<double, 3>> forces;
+    const bool from_start = std::find(s.start.keep.begin(), s.start.keep.end(), name) != s.start.keep.end();
+    kept.push_back(from_start ? &kept_batch(*start, name) : nullptr);
+    if (from_start)  // as many cells as the start holds, placed by restore() below
+      placements.resize(std::size_t(index_t(kept.back()->size()) / (6 * t.spec.data_sites.size())));
     for (const CellEntry& c : s.cells)
       if (c.type == t.spec.name) {
         placements.push_back(c.placement);
         forces.push_back(c.force);
       }
-    if (placements.empty()) continue;
     const auto type = std::make_shared<const cells::CellType>(t.spec);
     cells::Batch batch(type, placements);
     for (std::size_t c = 0; c < forces.size(); ++c) batch.set_body_force(index_t(c), forces[c]);
     ib.add(std::move(batch));
   }
-  for (const sim::TetheredPoints& p : s.point_sets) ib.add(p);
+  for (const PointSetEntry& p : s.point_sets) ib.add(tethered_points(p, s.grid.length));
+  if (start) {
+    sim::ImmersedBoundary::Carried c = ib.carried();
+    c.fluid = start->state.fluid;
+    c.clock = start->state.clock;
+    c.points = start->state.points;
+    for (std::size_t b = 0; b < kept.size(); ++b)
+      if (kept[b]) c.batches[b] = *kept[b];
+    ib.restore(c);
+  }
   return ib;
 }
 
@@ -682,6 +823,143 @@ std::vector<CellTypeGroups> dimensionless_groups(const Scene& s) {
   }
   return out;
 }
+
+namespace {
+
+/// A name as a YAML scalar: plain when it can be, else double-quoted.
+std::string yaml_name(const std::string& v) {
+  const bool plain = !v.empty() && v.find_first_of(":,#[]{}&*!|>'\"%@`\\\n") == std::string::npos && v.front() != ' ' &&
+                     v.back() != ' ' && v.front() != '-' && v.front() != '?';
+  if (plain) return v;
+  std::string q = "\"";
+  for (char c : v) {
+    if (c == '"' || c == '\\' || c == '\n') q.push_back('\\');
+    q.push_back(c == '\n' ? 'n' : c);
+  }
+  return q + "\"";
+}
+
+/// The shortest text that reads back to the same double (std::to_chars).
+std::string shortest(double x) {
+  char buffer[32];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, r.ptr);
+}
+
+/// A quantity in the CGS unit given, exactly: it reads back to the same double.
+std::string q(double x, const std::string& unit) { return unit.empty() ? shortest(x) : shortest(x) + " " + unit; }
+
+std::string triple(const std::array<double, 3>& v, const std::string& unit) {
+  return "[" + q(v[0], unit) + ", " + q(v[1], unit) + ", " + q(v[2], unit) + "]";
+}
+
+std::string model_yaml(const cells::ForceModel& m) {
+  std::string o = "{";
+  if (!m.elastic.empty()) {
+    o += "elastic: [";
+    for (std::size_t i = 0; i < m.elastic.size(); ++i) {
+      const mechanics::EnergyDensity& e = m.elastic[i];
+      const char* law = e.kind == mechanics::EnergyKind::skalak                    ? "skalak"
+                        : e.kind == mechanics::EnergyKind::neo_hookean_dissertation ? "neo_hookean"
+                        : e.kind == mechanics::EnergyKind::neo_hookean_paper        ? "neo_hookean_paper"
+                                                                                    : "tension";
+      o += std::string(i ? ", " : "") + "{law: " + law;
+      for (const mechanics::EnergyDensity::Parameter& p : e.parameters()) o += std::string(", ") + p.name + ": " + q(p.value, p.units);
+      o += "}";
+    }
+    o += "], ";
+  }
+  o += "kappa: " + q(m.kappa, "erg") + ", H0: " + (m.H0_reference ? std::string("reference") : q(m.H0, "1/cm")) +
+       ", nu: " + q(m.nu, "dyn s/cm") + "}";
+  return o;
+}
+
+}  // namespace
+
+std::string to_yaml(const Scene& s, const std::string& comment) {
+  std::ostringstream o;
+  std::istringstream lines(comment);
+  for (std::string line; std::getline(lines, line);) o << "# " << line << "\n";
+  const MacGrid& g = s.grid;
+  o << "name: " << yaml_name(s.name) << "\n";
+  o << "domain:\n  size: " << triple(g.length, "cm") << "\n  periodic: [";
+  bool first = true, any_wall = false;
+  for (int d = 0; d < 3; ++d)
+    if (g.periodic(d)) o << (first ? "" : ", ") << axis_name[d], first = false;
+    else any_wall = true;
+  o << "]\n";
+  if (any_wall) {
+    o << "  walls:\n";
+    for (int d = 0; d < 3; ++d) {
+      if (g.periodic(d)) continue;
+      o << "    " << axis_name[d] << ": {";
+      for (int side = 0; side < 2; ++side) {
+        const WallMotion& m = s.walls[d][side];
+        o << (side ? ", upper: " : "lower: ");
+        if (m.turning)
+          o << "{speed: " << q(m.speed, "cm/s") << ", turn: {from: " << q(m.from, "rad") << ", to: " << q(m.to, "rad")
+            << ", over: " << q(m.over, "s") << "}}";
+        else
+          o << triple(m.velocity, "cm/s");
+      }
+      o << "}\n";
+    }
+    if (s.initial_shear) o << "  initial_flow: shear\n";
+  }
+  if (!s.start.checkpoint.empty()) {
+    o << "start: {checkpoint: " << yaml_name(s.start.checkpoint) << ", keep: [";
+    for (std::size_t i = 0; i < s.start.keep.size(); ++i) o << (i ? ", " : "") << yaml_name(s.start.keep[i]);
+    o << "]}\n";
+  }
+  o << "fluid: {density: " << q(s.fluid.density, "g/cm^3") << ", viscosity: " << q(s.fluid.viscosity, "P") << "}\n";
+  o << "grid: {cells: [" << g.cells[0] << ", " << g.cells[1] << ", " << g.cells[2] << "]}\n";
+  if (s.ib.coupling == sim::Coupling::forward_euler)
+    throw InputError("time.coupling", sim::to_string(s.ib.coupling), "has no scene form (seed or midpoint)");
+  o << "time: {integrator: "
+    << (s.fluid_options.integrator == TimeIntegrator::peskin_two_stage ? "peskin_two_stage" : "backward_forward_euler")
+    << ", coupling: " << (s.ib.coupling == sim::Coupling::midpoint ? "midpoint" : "seed") << ", dt: " << q(s.fluid_options.dt, "s")
+    << ", end: " << q(s.t_end, "s");
+  if (s.ib.adaptive.enabled)
+    o << ", adaptive: {dt_min: " << q(s.ib.adaptive.dt_min, "s") << ", max_level: " << s.ib.adaptive.max_level
+      << ", grow_after: " << s.ib.adaptive.grow_after << "}";
+  o << "}\n";
+  o << "ib: {kernel: " << ib::to_string(s.ib.kernel) << ", body_force: " << triple(s.ib.body_force, "dyn/cm^3") << "}\n";
+  if (!s.types.empty()) o << "cell_types:\n";
+  for (const CellTypeEntry& t : s.types) {
+    o << "  - {name: " << yaml_name(t.spec.name) << ", preset: " << t.preset;
+    if (t.preset == "chapter3_red_cell") o << ", degree: " << t.degree;
+    else o << ", data_sites: " << t.spec.data_sites.size();
+    o << ", sample_sites: " << t.spec.sample_sites.size();
+    if (t.preset == "skalak_sphere") o << ", radius: " << q(t.radius, "cm");
+    o << ", model: " << model_yaml(t.spec.model);
+    o << "}\n";
+  }
+  if (!s.cells.empty()) o << "cells:\n";
+  for (const CellEntry& c : s.cells) {
+    const cells::Placement& p = c.placement;
+    o << "  - {type: " << yaml_name(c.type) << ", center: " << triple(p.center, "cm") << ", axis: " << triple(p.axis, "")
+      << ", angle: " << q(p.angle, "rad");
+    if (p.stretch != std::array<double, 3>{1, 1, 1}) o << ", stretch: " << triple(p.stretch, "");
+    if (c.force != std::array<double, 3>{0, 0, 0}) o << ", force: " << triple(c.force, "dyn");
+    o << "}\n";
+  }
+  if (!s.point_sets.empty()) o << "tethered_points:\n";
+  for (const PointSetEntry& p : s.point_sets) {
+    const PointSurface& f = p.surface;
+    o << "  - {name: " << yaml_name(p.name) << ", " << (f.spiral ? "spiral" : "plane") << ": {" << axis_name[f.normal] << ": "
+      << q(f.at, "cm");
+    if (f.spiral) o << ", bump: " << q(f.bump, "cm") << ", points: " << f.points;
+    else o << ", points: [" << f.lattice[0] << ", " << f.lattice[1] << "]";
+    o << "}, k: " << q(p.k, "dyn/cm") << ", eta: " << q(p.eta, "dyn s/cm") << "}\n";
+  }
+  o << "output: {diagnostics_every: " << s.diagnostics_every;
+  if (s.checkpoint_every > 0) o << ", checkpoint_every: " << q(s.checkpoint_every, "s");
+  if (s.snapshot_every > 0) o << ", snapshot_every: " << q(s.snapshot_every, "s");
+  o << "}\n";
+  return o.str();
+}
+
+Scene checked(const Scene& scene, const std::string& comment) { return parse_scene(to_yaml(scene, comment), scene.name); }
 
 std::string describe(const Scene& s) {
   std::ostringstream o;
@@ -720,8 +998,8 @@ std::string describe(const Scene& s) {
     o << "  cell type '" << t.spec.name << "' (preset " << t.preset << "): " << t.spec.data_sites.size() << " data / "
       << t.spec.sample_sites.size() << " sample sites; " << t.spec.model.describe() << "; " << n << " cell(s)\n";
   }
-  for (const sim::TetheredPoints& p : s.point_sets)
-    o << "  tethered points '" << p.name << "': " << p.X.size() / 3 << " points, k = " << p.k << " dyn/cm, eta = " << p.eta
+  for (const PointSetEntry& p : s.point_sets)
+    o << "  tethered points '" << p.name << "': " << (p.surface.spiral ? p.surface.points : index_t(p.surface.lattice[0]) * p.surface.lattice[1]) << " points, k = " << p.k << " dyn/cm, eta = " << p.eta
       << " dyn s/cm\n";
   return o.str();
 }
