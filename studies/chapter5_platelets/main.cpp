@@ -213,7 +213,7 @@ int main(int argc, char** argv) {
 
     st::SceneRunHooks hooks;
     hooks.sample = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib); };
-    const st::SceneRun run = st::run_scene(scene_text(s), "platelets", int(std::max(1L, total / 400)), full, opt, hooks, st::Sitting(opt).remaining());
+    const st::SceneRun run = st::run_scene(scene_text(s), "platelets", int(std::max(1L, total / 400)), opt.keeps_runs(), opt, hooks, st::Sitting(opt).remaining());
 
     std::vector<double> t;
     double endothelium_max = 0;

@@ -292,7 +292,7 @@ void WholeBlood::wall(const Wall& w, std::size_t wi) {
       if (ib.step_count() == start_steps[k]) io::write_checkpoint(start_file + to_text(k) + ".h5", init_text, ib);
   };
   ih.at_start = [&](const sim::ImmersedBoundary& ib) { v_ref = ib.batch(0).type().reference_volume() / std::pow(um, 3); };
-  const st::SceneRun init = st::run_scene(init_text, "init_" + w.name, s.every, opt.scale == st::Scale::full, opt, ih,
+  const st::SceneRun init = st::run_scene(init_text, "init_" + w.name, s.every, opt.keeps_runs(), opt, ih,
                                              sitting.remaining() / double(s.walls.size() - wi));  // shared by the inits to come
   st::record_run(results, "init_" + w.name, init.progress(starts.back()));
   add_cost("init " + w.name, double(init.steps), double(std::lround(starts.back() / s.dt)), init.seconds_per_step());
@@ -346,7 +346,7 @@ void WholeBlood::run_from(const Wall& w, const Domain& box, std::size_t k, bool 
       if (!writer) writer = std::make_unique<io::SnapshotWriter>(opt.out_dir + "/snapshots_" + tag, ib), writer->resume(ib.time());
       if ((ib.step_count() - start.state.clock.step) % snapshot_every == 0) writer->write(ib);
     };
-  const st::SceneRun run = st::run_scene(text, tag, s.every, opt.scale == st::Scale::full, opt, h, sitting.remaining());
+  const st::SceneRun run = st::run_scene(text, tag, s.every, opt.keeps_runs(), opt, h, sitting.remaining());
   const long done = run.steps - start.state.clock.step;  // the run's own span: steps from its starting time
   st::RunProgress progress = run.progress(t_end);
   progress.t -= t_start, progress.t_end = window, progress.steps = done;
@@ -484,14 +484,11 @@ void WholeBlood::summarize() {
   // above the endothelium (mean height 1 um for both shapes), and other readings for comparison.
   const double area = 16 * 16, above = 12 - 1.0, red_volume = red_count * v_ref;  // um^2, um, um^3
   V["red_cell_volume_um3"] = v_ref;
-  V["hematocrit_above_endothelium"] = red_volume / (area * above);
-  V["hematocrit_above_endothelium_without_top_1um"] = red_volume / (area * (above - 1));
-  V["hematocrit_above_endothelium_without_top_2um"] = red_volume / (area * (above - 2));
+  for (auto [name, height] : {std::pair{"above_endothelium", above}, {"above_endothelium_without_top_1um", above - 1},
+                              {"above_endothelium_without_top_2um", above - 2}, {"whole_box", 12.0}, {"above_3um", 9.0}, {"above_3um_below_10um", 7.0}})
+    V[std::string("hematocrit_") + name] = red_volume / (area * height);  // heights in um
   V["hematocrit_exclusion_ratio_1um"] = above / (above - 1);
   V["hematocrit_exclusion_ratio_2um"] = above / (above - 2);
-  V["hematocrit_whole_box"] = red_volume / (area * 12);
-  V["hematocrit_above_3um"] = red_volume / (area * 9.0);
-  V["hematocrit_above_3um_below_10um"] = red_volume / (area * 7.0);
   V["red_volume_for_34_percent_um3"] = 0.34 * area * above;
   for (auto [name, table] : {std::pair{"profiles", &profiles}, {"platelets", &platelets}, {"runs", &runs}, {"tank_treading", &treading},
                              {"procedure", &procedure}, {"snapshot", &snapshot}, {"cost", &cost}})
