@@ -183,8 +183,9 @@ bool Relaxation::advance() { return !impl_->loop->evolve(1).ended(); }
 bool Relaxation::advance_all() { return impl_->loop->evolve().ended(); }
 
 void Relaxation::mark_block() {
-  run::SeriesSet& s = impl_->loop->series();
-  s["blocks"].rows.push_back({run::phase_sums(s["phases"]).total()});
+  run::Run& loop = *impl_->loop;
+  loop.series()["blocks"].rows.push_back({run::phase_sums(loop.series()["phases"]).total()});
+  if (loop.progress().ended()) loop.checkpoint();  // the run's last block, after its finishing checkpoint
 }
 
 int Relaxation::step() const { return int(impl_->loop->ib().step_count()); }
