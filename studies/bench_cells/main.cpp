@@ -14,6 +14,7 @@
 //
 // Run:   build/studies/study_bench_cells --scale quick --out runs/bench_cells
 #include "common/force_call.hpp"
+#include "common/machine.hpp"
 #include "common/study.hpp"
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/cells/presets.hpp"
@@ -28,8 +29,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
-#include <random>
 
 using namespace rbfib;
 using namespace rbfib::cells;
@@ -123,20 +122,66 @@ double per_cell_difference(const Batch& b, index_t c) {
   return diff / scale;
 }
 
+/// The load's sums over its cell types (the whole-blood load: 8 red cells and 2 platelets).
+struct Load {
+  double seconds = 0, kernel_seconds = 0, product_flops = 0, product_seconds = 0, roofline_seconds = 0;
+};
+
+/// A cell type built (and timed) as a row of the cell_types table.
+template <class Make>
+std::shared_ptr<const CellType> build(const st::Options& opt, Json& types, Make make) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::shared_ptr<const CellType> t = make();
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  types["rows"].push(st::row({t->name(), double(t->n_data()), double(t->n_sample()), s, double(t->bytes()) / 1048576.0,
+                              t->model().describe()}));
+  st::log(opt, "2. " + t->describe() + " (built in " + to_text(s) + " s)");
+  return t;
+}
+
+/// One row of the force_calls table: a batch of `type` at `placements`, its median force call split
+/// by phase, its products against the ceilings, and the difference to the per-cell path; added to
+/// `load` when given. Roofline of the products: each streams its operator once and does 2 k flops
+/// per operator entry for k columns, so its time is at least max(flops / DGEMM rate, bytes / triad
+/// bandwidth).
+void measure(const st::Options& opt, Json& calls, const std::shared_ptr<const CellType>& type,
+             const std::vector<Placement>& placements, int repeats, const st::Ceiling& c, Load* load = nullptr) {
+  Batch b(type, placements);
+  if (type->model().dissipation()) set_velocities(b);
+  double total = 0;
+  const ForceTimings t = st::median_force_timings(b, repeats, total);
+  const ProductFlops f = product_flops(type->spec(), b.size());
+  const double rate = (f.jets + f.bending) / t.products();
+  const double roofline = std::max((f.jets + f.bending) / c.dgemm_flops, f.bytes / c.triad_bytes_per_s);
+  const double kernel_seconds = t.kernels + t.bending_kernel + t.reductions;  // site launch, bending's H kernel, reductions
+  const double diff = per_cell_difference(b, b.size() - 1);
+  calls["rows"].push(st::row({type->name(), double(b.size()), total, t.products(), t.bending(), t.kernels, t.reductions,
+                              total / double(b.size()), rate / 1e9, rate / c.dgemm_flops, roofline / t.products(),
+                              kernel_seconds / total, diff}));
+  st::log(opt, "3. " + type->name() + " x " + to_text(b.size()) + ": " + to_text(total * 1e3) + " ms per call (products " +
+                   to_text(t.products() * 1e3) + " of which bending " + to_text(t.bending_products * 1e3) + ", bending H kernel " +
+                   to_text(t.bending_kernel * 1e3) + ", site kernels " + to_text(t.kernels * 1e3) + ", reductions " +
+                   to_text(t.reductions * 1e3) + " ms); products at " + to_text(rate / 1e9) + " GFlop/s = " +
+                   to_text(rate / c.dgemm_flops) + " of DGEMM; batched vs per-cell " + to_text(diff));
+  if (load) {
+    load->seconds += total;
+    load->kernel_seconds += kernel_seconds;
+    load->product_flops += f.jets + f.bending;
+    load->product_seconds += t.products();
+    load->roofline_seconds += roofline;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   return st::run_main("bench_cells", [&] {
+    // ---- 1. Parameters and the machine's ceilings ----------------------------------------------
     const st::Options opt = st::parse_command_line(
         argc, argv, "bench_cells", "Time per force call of the whole-blood cell load, split by phase, against a DGEMM ceiling");
     const bool full = opt.scale == st::Scale::full;
-    const index_t rbc_nd = full ? 2500 : 625, rbc_ns = full ? 10000 : 2500;
-    const index_t plt_nd = 900, plt_ns = 900;
-    const index_t red_cells = 8;
+    const index_t rbc_nd = full ? 2500 : 625, rbc_ns = full ? 10000 : 2500, plt_nd = 900, plt_ns = 900, red_cells = 8;
     const int repeats = full ? 11 : 7;
-    const index_t dgemm_n = full ? 3000 : 2000;
-
-    // ---- 1. Parameters and the machine's ceiling -----------------------------------------------
     Json results = st::make_results(opt);
     Json& P = results["parameters"];
     P["red_cells"] = double(red_cells);
@@ -146,88 +191,40 @@ int main(int argc, char** argv) {
     P["repeats"] = repeats;
     P["threads"] = omp_get_max_threads();
     P["dense_backend"] = linalg::dense_backend_name();
-    const char* policy = std::getenv("OMP_WAIT_POLICY");
-    P["OMP_WAIT_POLICY"] = policy ? policy : "unset (libgomp default: spin, then sleep)";
-    const double ceiling = st::dgemm_rate(dgemm_n, repeats);
-    const double bandwidth = 3.0 * 8.0 * double(1 << 24) / st::triad_seconds(1 << 24);
-    P["dgemm_n"] = double(dgemm_n);
-    Json& V = results["values"];
-    V["dgemm_gflops"] = ceiling / 1e9;
-    V["triad_GBps"] = bandwidth / 1e9;
-    st::log(opt, "1. " + linalg::dense_backend_name() + ", " + to_text(omp_get_max_threads()) + " threads: square DGEMM n = " +
-                     to_text(dgemm_n) + " at " + to_text(ceiling / 1e9) + " GFlop/s, triad " + to_text(bandwidth / 1e9) + " GB/s");
+    st::record_wait_policy(P);
+    const st::Ceiling c = st::measure_ceiling(results, full ? 3000 : 2000, repeats);
+    st::log(opt, "1. " + linalg::dense_backend_name() + ", " + to_text(omp_get_max_threads()) + " threads: square DGEMM at " +
+                     to_text(c.dgemm_flops / 1e9) + " GFlop/s, triad " + to_text(c.triad_bytes_per_s / 1e9) + " GB/s");
 
     // ---- 2. Cell types -----------------------------------------------------------------------
-    Json types = st::table({"type", "n_data", "n_sample", "build_seconds", "operator_MiB", "forces"},
-                           {"", "", "", "s", "MiB", ""});
-    auto build = [&](auto make) {
-      const auto t0 = std::chrono::steady_clock::now();
-      auto t = make();
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      types["rows"].push(Json::Array{Json(t->name()), Json(double(t->n_data())), Json(double(t->n_sample())), Json(s),
-                                     Json(double(t->bytes()) / 1048576.0), Json(t->model().describe())});
-      st::log(opt, "2. " + t->describe() + " (built in " + to_text(s) + " s)");
-      return t;
-    };
-    const auto rbc = build([&] { return red_cell(rbc_nd, rbc_ns); });
-    const auto plt = build([&] { return platelet(plt_nd, plt_ns); });
+    Json types = st::table({"type", "n_data", "n_sample", "build_seconds", "operator_MiB", "forces"}, {"", "", "", "s", "MiB", ""});
+    const auto rbc = build(opt, types, [&] { return red_cell(rbc_nd, rbc_ns); });
+    const auto plt = build(opt, types, [&] { return platelet(plt_nd, plt_ns); });
 
     // ---- 3. The whole-blood load: time per call, split, product rate -------------------------
-    Json calls = st::table({"type", "cells", "seconds", "products_seconds", "bending_seconds", "kernels_seconds",
-                            "reductions_seconds", "seconds_per_cell", "product_gflops", "product_fraction_of_dgemm",
-                            "product_fraction_of_roofline", "kernel_share", "max_rel_diff_vs_per_cell"},
+    Json calls = st::table({"type", "cells", "seconds", "products_seconds", "bending_seconds", "kernels_seconds", "reductions_seconds",
+                            "seconds_per_cell", "product_gflops", "product_fraction_of_dgemm", "product_fraction_of_roofline",
+                            "kernel_share", "max_rel_diff_vs_per_cell"},
                            {"", "", "s", "s", "s", "s", "s", "s", "GFlop/s", "", "", "", ""});
-    // Roofline of the products: each streams its operator once and does 2 k flops per operator
-    // entry for k columns, so its time is at least max(flops / DGEMM rate, bytes / triad bandwidth).
-    double load_roofline_seconds = 0;
-    double load_seconds = 0, load_kernel_seconds = 0, load_product_flops = 0, load_product_seconds = 0;
-    auto measure = [&](const std::shared_ptr<const CellType>& type, const std::vector<Placement>& placements, bool record) {
-      Batch b(type, placements);
-      if (type->model().dissipation()) set_velocities(b);
-      double total = 0;
-      const ForceTimings t = st::median_force_timings(b, repeats, total);
-      const ProductFlops f = product_flops(type->spec(), b.size());
-      const double rate = (f.jets + f.bending) / t.products();
-      const double roofline = std::max((f.jets + f.bending) / ceiling, f.bytes / bandwidth);
-      // Kernels: the site launch, bending's H kernel and the reductions.
-      const double kernel_seconds = t.kernels + t.bending_kernel + t.reductions;
-      const double diff = per_cell_difference(b, b.size() - 1);
-      calls["rows"].push(Json::Array{Json(type->name()), Json(double(b.size())), Json(total), Json(t.products()),
-                                     Json(t.bending()), Json(t.kernels), Json(t.reductions), Json(total / double(b.size())),
-                                     Json(rate / 1e9), Json(rate / ceiling), Json(roofline / t.products()),
-                                     Json(kernel_seconds / total), Json(diff)});
-      st::log(opt, "3. " + type->name() + " x " + to_text(b.size()) + ": " + to_text(total * 1e3) + " ms per call (products " +
-                       to_text(t.products() * 1e3) + " of which bending " + to_text(t.bending_products * 1e3) +
-                       ", bending H kernel " + to_text(t.bending_kernel * 1e3) + ", site kernels " + to_text(t.kernels * 1e3) +
-                       ", reductions " + to_text(t.reductions * 1e3) + " ms); products at " + to_text(rate / 1e9) +
-                       " GFlop/s = " + to_text(rate / ceiling) + " of DGEMM; batched vs per-cell " + to_text(diff));
-      if (record) {
-        load_seconds += total;
-        load_kernel_seconds += kernel_seconds;
-        load_product_flops += f.jets + f.bending;
-        load_product_seconds += t.products();
-        load_roofline_seconds += roofline;
-      }
-    };
-    for (index_t n : {index_t(1), index_t(2), index_t(4)}) measure(rbc, red_cell_placements(n), false);
-    measure(rbc, red_cell_placements(red_cells), true);
-    measure(plt, platelet_placements(), true);
-    V["load_seconds_per_call"] = load_seconds;
-    V["load_kernel_share"] = load_kernel_seconds / load_seconds;
-    V["load_product_fraction_of_dgemm"] = load_product_flops / load_product_seconds / ceiling;
-    V["load_product_fraction_of_roofline"] = load_roofline_seconds / load_product_seconds;
-    if (full) {
-      // The red cell of the seed's Sec. 4.2.2.2 runs (864 data / 8,832 sample sites), one cell.
-      measure(build([&] {
-                CellTypeSpec spec = red_cell_spec(864, 8832);
-                spec.name = "red cell (864 / 8832 sites)";
-                return std::make_shared<const CellType>(std::move(spec));
-              }),
-              red_cell_placements(1), false);
+    Load load;
+    for (index_t n : {index_t(1), index_t(2), index_t(4)}) measure(opt, calls, rbc, red_cell_placements(n), repeats, c);
+    measure(opt, calls, rbc, red_cell_placements(red_cells), repeats, c, &load);
+    measure(opt, calls, plt, platelet_placements(), repeats, c, &load);
+    Json& V = results["values"];
+    V["load_seconds_per_call"] = load.seconds;
+    V["load_kernel_share"] = load.kernel_seconds / load.seconds;
+    V["load_product_fraction_of_dgemm"] = load.product_flops / load.product_seconds / c.dgemm_flops;
+    V["load_product_fraction_of_roofline"] = load.roofline_seconds / load.product_seconds;
+    if (full) {  // the red cell of the seed's Sec. 4.2.2.2 runs (864 data / 8,832 sample sites), one cell
+      const auto rbc864 = build(opt, types, [] {
+        CellTypeSpec spec = red_cell_spec(864, 8832);
+        spec.name = "red cell (864 / 8832 sites)";
+        return std::make_shared<const CellType>(std::move(spec));
+      });
+      measure(opt, calls, rbc864, red_cell_placements(1), repeats, c);
     }
-    st::log(opt, "3. whole-blood cell load: " + to_text(load_seconds * 1e3) + " ms per force call; kernels and reductions " +
-                     to_text(100 * load_kernel_seconds / load_seconds) + "% of it");
-
+    st::log(opt, "3. whole-blood cell load: " + to_text(load.seconds * 1e3) + " ms per force call; kernels and reductions " +
+                     to_text(100 * load.kernel_seconds / load.seconds) + "% of it");
     results["tables"]["cell_types"] = types;
     results["tables"]["force_calls"] = calls;
     st::write_results(opt, results);

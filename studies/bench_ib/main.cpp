@@ -13,6 +13,7 @@
 // max(flops/peak, bytes/bandwidth); the fraction reported is bound/measured.
 //
 // Run:   build/studies/study_bench_ib --scale quick --out runs/bench_ib
+#include "common/machine.hpp"
 #include "common/study.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/ib/grid.hpp"
@@ -24,7 +25,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <random>
@@ -75,30 +75,118 @@ Times time_calls(int repeats, const std::function<void()>& fn) {
   return {t.size() % 2 ? t[m] : 0.5 * (t[m - 1] + t[m]), t.front()};
 }
 
-double load_average() {
-  std::ifstream in("/proc/loadavg");
-  double l = NAN;
-  in >> l;
-  return l;
+/// The operations at 64^3: the points and forces, the grid velocity, the serial references, and the
+/// roofline bound of a call (all three components) given the bytes it moves.
+struct Problem {
+  index_t n = 0;
+  dvec X, F;
+  std::array<dvec, 3> u, f_serial;
+  dvec U_serial;
+  double grid_values = 0, flops = 0, peak = 0, bandwidth = 0;
+  double roofline(double bytes) const { return std::max(flops / peak, bytes / bandwidth); }
+  double interpolation_bound(int threads, int th) const { return roofline(48.0 * n + 8.0 * grid_values) * threads / th; }
+  double spreading_bound(int threads, int th) const { return roofline(48.0 * n + 16.0 * grid_values) * threads / th; }
+};
+
+/// Times one operation on `th` threads and adds its row: median and minimum, points per second per
+/// core, the roofline fraction, and the relative difference to the serial reference.
+double add_row(Json& table, const char* op, const std::string& algorithm, int th, int repeats, const std::function<void()>& call,
+               double bound, const std::function<double()>& diff, index_t n) {
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(th);
+  const Times tt = time_calls(repeats, call);
+  omp_set_num_threads(threads);
+  table["rows"].push(st::row({op, algorithm, th, tt.median, tt.min, n / tt.median / th, bound / tt.median, diff()}));
+  return tt.median;
 }
 
-using rbfib::study::table;
+/// Random points, forces and grid velocity (seeded) on the grid of `ib`, and the serial references.
+Problem make_problem(index_t n, double box, const std::array<Box, 3>& boxes, Interaction& ib, int s, double peak, double bandwidth) {
+  Problem P;
+  P.n = n;
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> U(0.0, box), Uf(-1.0, 1.0);
+  host_vector<double> Xh(3 * n), Fh(3 * n);
+  for (auto& x : Xh) x = U(rng);
+  for (auto& f : Fh) f = Uf(rng) * 1e-9;
+  P.X = Xh, P.F = Fh;
+  for (int c = 0; c < 3; ++c) {
+    host_vector<double> v(boxes[c].size());
+    for (auto& x : v) x = Uf(rng);
+    P.u[c] = v;
+  }
+  P.grid_values = 3.0 * boxes[0].size();
+  P.flops = 3.0 * n * (2.0 * s * s * s + 2.0 * s * s + 2.0 * s) + 6.0 * n * s * 10.0;
+  P.peak = peak, P.bandwidth = bandwidth;
+  ib.interpolate(P.X, P.u, P.U_serial, Interpolation::serial);
+  ib.spread(P.X, P.F, P.f_serial, Spreading::serial);
+  return P;
+}
+
+/// Every interpolation and spreading algorithm (the serial ones on one thread), then the binned ones
+/// on one thread (the per-core rate without parallel overhead); the best parallel times.
+std::pair<double, double> operations(const st::Options& opt, Json& tops, Interaction& ib, const Problem& P, int repeats, int repeats_slow) {
+  const int threads = omp_get_max_threads();
+  dvec Ut;
+  std::array<dvec, 3> f;
+  auto interp_diff = [&] { return st::max_rel_diff({&Ut}, {&P.U_serial}); };
+  auto spread_diff = [&] { return st::max_rel_diff(f, P.f_serial); };
+  double best_interp = INFINITY, best_spread = INFINITY;
+  for (Interpolation a : all_interpolations()) {
+    const int th = a == Interpolation::serial ? 1 : threads;
+    const double t = add_row(tops, "interpolate", algorithm_number(a), th, a == Interpolation::binned ? repeats : repeats_slow,
+                             [&] { ib.interpolate(P.X, P.u, Ut, a); }, P.interpolation_bound(threads, th), interp_diff, P.n);
+    if (a != Interpolation::serial) best_interp = std::min(best_interp, t);
+    st::log(opt, std::string("2. interpolate ") + algorithm_number(a) + ": median " + std::to_string(t * 1e3) + " ms");
+  }
+  for (Spreading a : all_spreadings()) {
+    const int th = a == Spreading::serial ? 1 : threads;
+    const double t = add_row(tops, "spread", algorithm_number(a), th, a == Spreading::binned ? repeats : repeats_slow,
+                             [&] { ib.spread(P.X, P.F, f, a); }, P.spreading_bound(threads, th), spread_diff, P.n);
+    if (a != Spreading::serial) best_spread = std::min(best_spread, t);
+    st::log(opt, std::string("2. spread ") + algorithm_number(a) + ": median " + std::to_string(t * 1e3) + " ms");
+  }
+  const double ti = add_row(tops, "interpolate", "binned", 1, repeats, [&] { ib.interpolate(P.X, P.u, Ut, Interpolation::binned); },
+                            P.interpolation_bound(threads, 1), interp_diff, P.n);
+  const double ts = add_row(tops, "spread", "binned", 1, repeats, [&] { ib.spread(P.X, P.F, f, Spreading::binned); },
+                            P.spreading_bound(threads, 1), spread_diff, P.n);
+  st::log(opt, "2b. one thread: interpolate binned median " + std::to_string(ti * 1e3) + " ms, spread binned median " +
+                   std::to_string(ts * 1e3) + " ms");
+  return {best_interp, best_spread};
+}
+
+/// Spreading by Algs. 4.4, 4.5, 4.6 and binned on each refinement; the first refinement at which
+/// Alg. 4.5 (buffered) is slower than Alg. 4.4, or -1.
+int crossover_refinement(const st::Options& opt, Json& table, const Problem& P, const std::vector<int>& refinements, double box,
+                         ib::Kernel kernel, int repeats, int repeats_slow) {
+  int crossover = -1;
+  std::array<dvec, 3> f;
+  for (int R : refinements) {
+    Interaction ib(mac_boxes({R, R, R}, {box, box, box}, {true, true, true}), kernel);
+    double t44 = 0.0, t45 = 0.0;
+    for (Spreading a : {Spreading::sort_reduce, Spreading::preallocated, Spreading::on_the_fly, Spreading::binned}) {
+      const double t = time_calls(a == Spreading::binned ? repeats : repeats_slow, [&] { ib.spread(P.X, P.F, f, a); }).median;
+      table["rows"].push(st::row({R, algorithm_number(a), t}));
+      if (a == Spreading::sort_reduce) t44 = t;
+      if (a == Spreading::preallocated) t45 = t;
+    }
+    if (crossover < 0 && t45 > t44) crossover = R;
+    st::log(opt, "3. refinement " + std::to_string(R) + ": 4.4 " + std::to_string(t44) + " s, 4.5 " + std::to_string(t45) + " s");
+  }
+  return crossover;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   return st::run_main("bench_ib", [&] {
+    // 1. Parameters and the machine model.
     const st::Options opt = st::parse_command_line(argc, argv, "bench_ib", "Per-call times, points/s/core and roofline fraction of IB interpolation and spreading");
     const bool full = opt.scale == st::Scale::full;
     const double box = 16.0 * units::um;
     const index_t n = index_t(1) << 16;
-    const int N = 64;
+    const int N = 64, threads = omp_get_max_threads(), repeats = full ? 21 : 7, repeats_slow = full ? 5 : 1;
     const ib::Kernel kernel = ib::Kernel::bspline3;
-    const int s = kernel_support(kernel);
-    const int threads = omp_get_max_threads();
-    const int repeats = full ? 21 : 7;
-    const int repeats_slow = full ? 5 : 1;
-
     Json results = st::make_results(opt);
     Json& par = results["parameters"];
     par["points"] = double(n);
@@ -108,132 +196,28 @@ int main(int argc, char** argv) {
     par["threads"] = threads;
     par["repeats"] = repeats;
     par["cpu_mhz"] = cpu_mhz();
-    const char* policy = std::getenv("OMP_WAIT_POLICY");
-    par["OMP_WAIT_POLICY"] = policy ? policy : "unset (libgomp default: spin, then sleep)";
-
-    // 1. Machine model.
-    const double bw = triad_bandwidth();
-    const double peak = 8.0 * cpu_mhz() * 1e6 * threads;
-    par["triad_bandwidth_GB_per_s"] = bw / 1e9;
+    st::record_wait_policy(par);
+    const double bandwidth = triad_bandwidth(), peak = 8.0 * cpu_mhz() * 1e6 * threads;
+    par["triad_bandwidth_GB_per_s"] = bandwidth / 1e9;
     par["peak_gflops_model"] = peak / 1e9;
-    st::log(opt, "1. " + std::to_string(threads) + " threads, triad bandwidth " + std::to_string(bw / 1e9) + " GB/s, model peak " +
-                     std::to_string(peak / 1e9) + " GFlop/s");
+    st::log(opt, "1. " + std::to_string(threads) + " threads, triad bandwidth " + std::to_string(bandwidth / 1e9) +
+                     " GB/s, model peak " + std::to_string(peak / 1e9) + " GFlop/s");
 
-    std::mt19937_64 rng(1);
-    std::uniform_real_distribution<double> U(0.0, box), Uf(-1.0, 1.0);
-    host_vector<double> Xh(3 * n), Fh(3 * n);
-    for (auto& x : Xh) x = U(rng);
-    for (auto& f : Fh) f = Uf(rng) * 1e-9;
-    const dvec X = Xh, F = Fh;
-
-    // 2. Per-call times at 64^3.
-    Json tops = table({"operation", "algorithm", "threads", "seconds", "min_seconds", "points_per_s_per_core", "roofline_fraction",
-                       "max_rel_diff_vs_serial"},
-                      {"", "", "", "s", "s", "1/s", "", ""});
-    par["load_average_at_start"] = load_average();
+    // 2. Per-call times at 64^3, every algorithm, against the serial one.
     const auto boxes = mac_boxes({N, N, N}, {box, box, box}, {true, true, true});
     Interaction ib(boxes, kernel);
-    std::array<dvec, 3> u;
-    for (int c = 0; c < 3; ++c) {
-      host_vector<double> v(boxes[c].size());
-      for (auto& x : v) x = Uf(rng);
-      u[c] = v;
-    }
-    const double grid_values = 3.0 * boxes[0].size();
-    const double flops = 3.0 * n * (2.0 * s * s * s + 2.0 * s * s + 2.0 * s) + 6.0 * n * s * 10.0;
-    auto roofline = [&](double bytes) { return std::max(flops / peak, bytes / bw); };
-    dvec Uref, Ut;
-    ib.interpolate(X, u, Uref, Interpolation::serial);
-    const host_vector<double> Urefh = Uref;
-    double uscale = 0.0;
-    for (double v : Urefh) uscale = std::max(uscale, std::abs(v));
-    double best_interp = INFINITY, best_spread = INFINITY;
-    for (Interpolation a : all_interpolations()) {
-      const int th = a == Interpolation::serial ? 1 : threads;
-      omp_set_num_threads(th);
-      const Times tt = time_calls(a == Interpolation::binned ? repeats : repeats_slow, [&] { ib.interpolate(X, u, Ut, a); });
-      const double t = tt.median;
-      omp_set_num_threads(threads);
-      const host_vector<double> Uh = Ut;
-      double diff = 0.0;
-      for (size_t i = 0; i < Uh.size(); ++i) diff = std::max(diff, std::abs(Uh[i] - Urefh[i]));
-      const double bound = roofline(48.0 * n + 8.0 * grid_values) * threads / th;
-      tops["rows"].push(Json::Array{Json("interpolate"), Json(algorithm_number(a)), Json(th), Json(t), Json(tt.min), Json(n / t / th), Json(bound / t),
-                                    Json(diff / uscale)});
-      if (a != Interpolation::serial) best_interp = std::min(best_interp, t);
-      st::log(opt, std::string("2. interpolate ") + algorithm_number(a) + ": median " + std::to_string(t * 1e3) + " ms, min " +
-                       std::to_string(tt.min * 1e3) + " ms");
-    }
-    std::array<dvec, 3> fref, f;
-    ib.spread(X, F, fref, Spreading::serial);
-    std::array<host_vector<double>, 3> frefh;
-    double fscale = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      frefh[c] = fref[c];
-      for (double v : frefh[c]) fscale = std::max(fscale, std::abs(v));
-    }
-    for (Spreading a : all_spreadings()) {
-      const bool slow = a != Spreading::binned;
-      const int th = a == Spreading::serial ? 1 : threads;
-      omp_set_num_threads(th);
-      const Times tt = time_calls(slow ? repeats_slow : repeats, [&] { ib.spread(X, F, f, a); });
-      const double t = tt.median;
-      omp_set_num_threads(threads);
-      double diff = 0.0;
-      for (int c = 0; c < 3; ++c) {
-        const host_vector<double> fh = f[c];
-        for (size_t m = 0; m < fh.size(); ++m) diff = std::max(diff, std::abs(fh[m] - frefh[c][m]));
-      }
-      const double bound = roofline(48.0 * n + 16.0 * grid_values) * threads / th;
-      tops["rows"].push(Json::Array{Json("spread"), Json(algorithm_number(a)), Json(th), Json(t), Json(tt.min), Json(n / t / th), Json(bound / t),
-                                    Json(diff / fscale)});
-      if (a != Spreading::serial) best_spread = std::min(best_spread, t);
-      st::log(opt, std::string("2. spread ") + algorithm_number(a) + ": median " + std::to_string(t * 1e3) + " ms, min " +
-                       std::to_string(tt.min * 1e3) + " ms");
-    }
-
-    // 2b. The binned variants on one thread (the per-core rate without parallel overhead).
-    omp_set_num_threads(1);
-    {
-      const Times ti = time_calls(repeats, [&] { ib.interpolate(X, u, Ut, Interpolation::binned); });
-      const Times ts = time_calls(repeats, [&] { ib.spread(X, F, f, Spreading::binned); });
-      const double bi = roofline(48.0 * n + 8.0 * grid_values) * threads, bs = roofline(48.0 * n + 16.0 * grid_values) * threads;
-      const host_vector<double> Uh = Ut;
-      double di = 0.0, ds = 0.0;
-      for (size_t i = 0; i < Uh.size(); ++i) di = std::max(di, std::abs(Uh[i] - Urefh[i]));
-      for (int c = 0; c < 3; ++c) {
-        const host_vector<double> fh = f[c];
-        for (size_t m = 0; m < fh.size(); ++m) ds = std::max(ds, std::abs(fh[m] - frefh[c][m]));
-      }
-      tops["rows"].push(Json::Array{Json("interpolate"), Json("binned"), Json(1), Json(ti.median), Json(ti.min), Json(n / ti.median),
-                                    Json(bi / ti.median), Json(di / uscale)});
-      tops["rows"].push(Json::Array{Json("spread"), Json("binned"), Json(1), Json(ts.median), Json(ts.min), Json(n / ts.median),
-                                    Json(bs / ts.median), Json(ds / fscale)});
-      st::log(opt, "2b. one thread: interpolate binned median " + std::to_string(ti.median * 1e3) + " ms, spread binned median " +
-                       std::to_string(ts.median * 1e3) + " ms");
-    }
-    omp_set_num_threads(threads);
-    par["load_average_after_timing"] = load_average();
+    const Problem P = make_problem(n, box, boxes, ib, kernel_support(kernel), peak, bandwidth);
+    par["load_average_at_start"] = st::load_average();
+    Json tops = st::table({"operation", "algorithm", "threads", "seconds", "min_seconds", "points_per_s_per_core", "roofline_fraction",
+                           "max_rel_diff_vs_serial"},
+                          {"", "", "", "s", "s", "1/s", "", ""});
+    const auto [best_interp, best_spread] = operations(opt, tops, ib, P, repeats, repeats_slow);
+    par["load_average_after_timing"] = st::load_average();
 
     // 3. Crossover: Algs. 4.4, 4.5, 4.6 and binned against refinement.
-    std::vector<int> refinements = {16, 32, 64, 128};
-    if (full) refinements.push_back(256);
-    Json tcross = table({"refinement", "algorithm", "seconds"}, {"", "", "s"});
-    int crossover = -1;
-    for (int R : refinements) {
-      const auto bx = mac_boxes({R, R, R}, {box, box, box}, {true, true, true});
-      Interaction ibr(bx, kernel);
-      double t44 = 0.0, t45 = 0.0;
-      for (Spreading a : {Spreading::sort_reduce, Spreading::preallocated, Spreading::on_the_fly, Spreading::binned}) {
-        const double t = time_calls(a == Spreading::binned ? repeats : repeats_slow, [&] { ibr.spread(X, F, f, a); }).median;
-        tcross["rows"].push(Json::Array{Json(R), Json(algorithm_number(a)), Json(t)});
-        if (a == Spreading::sort_reduce) t44 = t;
-        if (a == Spreading::preallocated) t45 = t;
-      }
-      if (crossover < 0 && t45 > t44) crossover = R;
-      st::log(opt, "3. refinement " + std::to_string(R) + ": 4.4 " + std::to_string(t44) + " s, 4.5 " + std::to_string(t45) + " s");
-    }
-
+    Json tcross = st::table({"refinement", "algorithm", "seconds"}, {"", "", "s"});
+    const int crossover = crossover_refinement(opt, tcross, P, full ? std::vector<int>{16, 32, 64, 128, 256} : std::vector<int>{16, 32, 64, 128},
+                                               box, kernel, repeats, repeats_slow);
     results["tables"]["operations"] = tops;
     results["tables"]["crossover"] = tcross;
     Json& v = results["values"];

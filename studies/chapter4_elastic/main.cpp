@@ -12,6 +12,7 @@
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
+#include "rbfib/grid/periodic_spline.hpp"
 #include "rbfib/linalg/blas.hpp"
 #include "rbfib/scene/scene.hpp"
 #include "rbfib/sim/ib_step.hpp"
@@ -25,74 +26,6 @@ namespace st = rbfib::study;
 using st::Json;
 
 namespace {
-
-/// Values at the midpoints x_{i+1/2} of a periodic cubic spline through y_0..y_{n-1} (spacing h):
-/// the second derivatives solve the cyclic system M_{i-1} + 4 M_i + M_{i+1} = 6 (y_{i-1} - 2 y_i
-/// + y_{i+1}) / h^2 (Sherman-Morrison on the Thomas algorithm), and
-/// s(x_{i+1/2}) = (y_i + y_{i+1}) / 2 - h^2 (M_i + M_{i+1}) / 16.
-std::vector<double> periodic_spline_midpoints(const std::vector<double>& y, double h) {
-  const int n = int(y.size());
-  std::vector<double> r(n), M(n), mid(n);
-  for (int i = 0; i < n; ++i) r[i] = 6 * (y[(i + n - 1) % n] - 2 * y[i] + y[(i + 1) % n]) / (h * h);
-  // Cyclic tridiagonal (1, 4, 1): A = T + u v^T with T's corner-corrected diagonal.
-  auto thomas = [n](std::vector<double> d, std::vector<double> b) {  // sub = super = 1
-    std::vector<double> c(n);
-    c[0] = 1 / d[0];
-    b[0] /= d[0];
-    for (int i = 1; i < n; ++i) {
-      const double den = d[i] - c[i - 1];
-      c[i] = 1 / den;
-      b[i] = (b[i] - b[i - 1]) / den;
-    }
-    for (int i = n - 2; i >= 0; --i) b[i] -= c[i] * b[i + 1];
-    return b;
-  };
-  const double gamma = -4;
-  std::vector<double> d(n, 4.0), u(n, 0.0);
-  d[0] = 4 - gamma;
-  d[n - 1] = 4 - 1.0 / gamma;
-  u[0] = gamma;
-  u[n - 1] = 1;
-  const std::vector<double> x = thomas(d, r), z = thomas(d, u);
-  const double fact = (x[0] + x[n - 1] / gamma) / (1 + z[0] + z[n - 1] / gamma);
-  for (int i = 0; i < n; ++i) M[i] = x[i] - fact * z[i];
-  for (int i = 0; i < n; ++i) mid[i] = 0.5 * (y[i] + y[(i + 1) % n]) - h * h * (M[i] + M[(i + 1) % n]) / 16;
-  return mid;
-}
-
-/// The fine component (n_f^3, spacing h_f) evaluated at the points of the coarse component
-/// (n_f/2 per axis): along its own axis a coarse face coincides with every second fine face
-/// (index 2 i + 1); along the others a coarse centre is the midpoint of fine centres 2 i and 2 i + 1,
-/// so a periodic cubic spline of the fine values gives it.
-std::vector<double> fine_at_coarse(const host_vector<double>& fine, int nf, double hf, int a) {
-  const int nc = nf / 2;
-  std::vector<double> cur(fine.begin(), fine.end());
-  int n[3] = {nf, nf, nf};
-  for (int d = 0; d < 3; ++d) {
-    const int m[3] = {d == 0 ? nc : n[0], d == 1 ? nc : n[1], d == 2 ? nc : n[2]};
-    std::vector<double> next(std::size_t(m[0]) * m[1] * m[2]);
-    const int s[3] = {1, n[0], n[0] * n[1]};
-    const int t[3] = {1, m[0], m[0] * m[1]};
-    // Line by line along d.
-    const int e1 = (d + 1) % 3, e2 = (d + 2) % 3;
-    for (int q2 = 0; q2 < n[e2]; ++q2)
-      for (int q1 = 0; q1 < n[e1]; ++q1) {
-        std::vector<double> line(n[d]);
-        for (int p = 0; p < n[d]; ++p) line[p] = cur[std::size_t(p) * s[d] + std::size_t(q1) * s[e1] + std::size_t(q2) * s[e2]];
-        std::vector<double> out(nc);
-        if (d == a) {
-          for (int i = 0; i < nc; ++i) out[i] = line[2 * i + 1];
-        } else {
-          const std::vector<double> mid = periodic_spline_midpoints(line, hf);
-          for (int i = 0; i < nc; ++i) out[i] = mid[2 * i];
-        }
-        for (int i = 0; i < nc; ++i) next[std::size_t(i) * t[d] + std::size_t(q1) * t[e1] + std::size_t(q2) * t[e2]] = out[i];
-      }
-    cur.swap(next);
-    n[d] = nc;
-  }
-  return cur;
-}
 
 struct Run {
   double h_um = 0, dt_us = 0;
@@ -163,6 +96,48 @@ Run relax(int cells_per_axis, double dt, index_t n_sample, double radius, double
   return r;
 }
 
+/// Root-mean-square and largest |X_a - X_b| over the data sites (um).
+std::pair<double, double> position_difference(const Run& a, const Run& b) {
+  double x2 = 0, xinf = 0;
+  for (std::size_t i = 0; i < a.X.size(); ++i) {
+    const double e = (a.X[i] - b.X[i]) / units::um;
+    x2 += e * e;
+    xinf = std::max(xinf, std::abs(e));
+  }
+  return {std::sqrt(x2 / double(a.X.size())), xinf};
+}
+
+double volume_change(const Run& r) { return (r.volume - r.volume0) / r.volume0; }
+
+/// Tables 4.3 and 4.4: errors between successive grids, velocity (the fine grid's spline at the
+/// coarse grid's points) and positions; and each run's volume change.
+void grid_errors(Json& results, const std::vector<Run>& runs, const std::vector<int>& grids) {
+  Json tu = st::table({"h_um", "dt_us", "u_err_2", "u_err_inf", "seconds"}, {"um", "us", "cm/s", "cm/s", "s"});
+  Json tx = st::table({"h_um", "n_sample", "X_err_2", "X_err_inf", "seconds"}, {"um", "", "um", "um", "s"});
+  Json tv = st::table({"h_um", "volume_change_rel", "seconds_per_step"}, {"um", "", "s"});
+  for (std::size_t k = 0; k + 1 < runs.size(); ++k) {
+    const Run &c = runs[k], &f = runs[k + 1];
+    const double hc = c.h_um * units::um;
+    double s2 = 0, sinf = 0;
+    for (int a = 0; a < 3; ++a) {
+      const std::vector<double> fc =
+          restrict_mac_component(std::vector<double>(f.u[a].begin(), f.u[a].end()), grids[k + 1], f.h_um * units::um, a);
+      for (std::size_t i = 0; i < fc.size(); ++i) {
+        const double e = c.u[a][i] - fc[i];
+        s2 += e * e * hc * hc * hc;
+        sinf = std::max(sinf, std::abs(e));
+      }
+    }
+    const auto [x2, xinf] = position_difference(c, f);
+    tu["rows"].push(st::row({c.h_um, c.dt_us, std::sqrt(s2 / std::pow(16 * units::um, 3)), sinf, c.seconds}));
+    tx["rows"].push(st::row({c.h_um, double(c.n_sample), x2, xinf, c.seconds}));
+  }
+  for (const Run& r : runs) tv["rows"].push(st::row({r.h_um, volume_change(r), r.seconds_per_step}));
+  results["tables"]["table43_velocity"] = tu;
+  results["tables"]["table44_positions"] = tx;
+  results["tables"]["volume"] = tv;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -198,38 +173,10 @@ int main(int argc, char** argv) {
     }
 
     // ---- 3. Errors between successive grids (Tables 4.3, 4.4) --------------------------------
-    Json tu = st::table({"h_um", "dt_us", "u_err_2", "u_err_inf", "seconds"}, {"um", "us", "cm/s", "cm/s", "s"});
-    Json tx = st::table({"h_um", "n_sample", "X_err_2", "X_err_inf", "seconds"}, {"um", "", "um", "um", "s"});
-    Json tv = st::table({"h_um", "volume_change_rel", "seconds_per_step"}, {"um", "", "s"});
+    grid_errors(results, runs, grids);
     double worst_volume = 0;
-    for (std::size_t k = 0; k + 1 < runs.size(); ++k) {
-      const Run &c = runs[k], &f = runs[k + 1];
-      const int nf = grids[k + 1];
-      const double hf = f.h_um * units::um, hc = c.h_um * units::um;
-      double s2 = 0, sinf = 0;
-      for (int a = 0; a < 3; ++a) {
-        const std::vector<double> fc = fine_at_coarse(f.u[a], nf, hf, a);
-        for (std::size_t i = 0; i < fc.size(); ++i) {
-          const double e = c.u[a][i] - fc[i];
-          s2 += e * e * hc * hc * hc;
-          sinf = std::max(sinf, std::abs(e));
-        }
-      }
-      const double L3 = std::pow(16 * units::um, 3);
-      double x2 = 0, xinf = 0;
-      for (std::size_t i = 0; i < c.X.size(); ++i) {
-        const double e = (c.X[i] - f.X[i]) / units::um;
-        x2 += e * e;
-        xinf = std::max(xinf, std::abs(e));
-      }
-      tu["rows"].push(Json::Array{Json(c.h_um), Json(c.dt_us), Json(std::sqrt(s2 / L3)), Json(sinf), Json(c.seconds)});
-      tx["rows"].push(Json::Array{Json(c.h_um), Json(double(c.n_sample)), Json(std::sqrt(x2 / double(c.X.size()))), Json(xinf), Json(c.seconds)});
-    }
-    for (const Run& r : runs) {
-      const double dv = (r.volume - r.volume0) / r.volume0;
-      worst_volume = std::max(worst_volume, std::abs(dv));
-      tv["rows"].push(Json::Array{Json(r.h_um), Json(dv), Json(r.seconds_per_step)});
-    }
+    for (const Run& r : runs) worst_volume = std::max(worst_volume, std::abs(volume_change(r)));
+
     // ---- 4. Temporal order of each coupling (Sec. 2.4) on the h = 1 um grid ---------------------
     // The data sites after 16 us for dt = 1.6 ... 0.1 us; differences between dt and dt/2.
     Json tt = st::table({"scheme", "dt_us", "X_err_2", "X_err_inf", "seconds"}, {"", "us", "um", "um", "s"});
@@ -240,24 +187,14 @@ int main(int argc, char** argv) {
       std::vector<Run> byt;
       for (double dt : {1.6, 0.8, 0.4, 0.2, 0.1}) {
         byt.push_back(relax(grids[0], dt * units::us, 220, radius, t_end, opt, sc));
-        const Run& r = byt.back();
-        worst_volume = std::max(worst_volume, std::abs((r.volume - r.volume0) / r.volume0));
+        worst_volume = std::max(worst_volume, std::abs(volume_change(byt.back())));
       }
       for (std::size_t k = 0; k + 1 < byt.size(); ++k) {
-        double x2 = 0, xinf = 0;
-        for (std::size_t i = 0; i < byt[k].X.size(); ++i) {
-          const double e = (byt[k].X[i] - byt[k + 1].X[i]) / units::um;
-          x2 += e * e;
-          xinf = std::max(xinf, std::abs(e));
-        }
-        tt["rows"].push(Json::Array{Json(sc.name()), Json(byt[k].dt_us), Json(std::sqrt(x2 / double(byt[k].X.size()))), Json(xinf),
-                                    Json(byt[k].seconds)});
+        const auto [x2, xinf] = position_difference(byt[k], byt[k + 1]);
+        tt["rows"].push(st::row({sc.name(), byt[k].dt_us, x2, xinf, byt[k].seconds}));
       }
     }
     results["tables"]["temporal_orders"] = tt;
-    results["tables"]["table43_velocity"] = tu;
-    results["tables"]["table44_positions"] = tx;
-    results["tables"]["volume"] = tv;
     results["values"]["max_volume_change_rel"] = worst_volume;
     st::write_results(opt, results);
     return 0;

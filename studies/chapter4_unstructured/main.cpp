@@ -13,6 +13,7 @@
 //
 // Run:   build/studies/study_chapter4_unstructured --scale quick --out runs/chapter4_unstructured
 //        (--scale full: the seed's sizes, 2^16..2^19 points, more steps; takes much longer)
+#include "common/machine.hpp"
 #include "common/study.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
@@ -23,9 +24,7 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <cmath>
-#include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
@@ -73,24 +72,13 @@ Flow shear_flow(const std::array<Box, 3>& boxes, const Params& p) {
   std::vector<double> uz(ny), fz(ny);
   for (int j = 0; j < ny; ++j) uz[j] = p.shear_rate * (bz.x(1, j) - 0.5 * p.box);
   for (int j = 0; j < ny; ++j) {
-    const double lap = (uz[(j + 1) % ny] - 2 * uz[j] + uz[(j + ny - 1) % ny]) / (h * h);
-    fz[j] = -p.viscosity * lap;
+    fz[j] = -p.viscosity * ((uz[(j + 1) % ny] - 2 * uz[j] + uz[(j + ny - 1) % ny]) / (h * h));
     flow.max_background = std::max(flow.max_background, std::abs(fz[j]));
   }
-  for (int c = 0; c < 3; ++c) {
-    host_vector<double> u(boxes[c].size(), 0.0), f(boxes[c].size(), 0.0);
-    if (c == 2) {
-      index_t m = 0;
-      for (int k = 0; k < bz.n(2); ++k)
-        for (int j = 0; j < bz.n(1); ++j)
-          for (int i = 0; i < bz.n(0); ++i, ++m) {
-            u[m] = uz[j];
-            f[m] = fz[j];
-          }
-    }
-    flow.u[c] = u;
-    flow.f_bg[c] = f;
-  }
+  host_vector<double> u(bz.size()), f(bz.size());
+  for (index_t m = 0; m < bz.size(); ++m) u[m] = uz[m / bz.n(0) % ny], f[m] = fz[m / bz.n(0) % ny];  // x fastest, then y
+  for (int c = 0; c < 2; ++c) flow.u[c] = flow.f_bg[c] = dvec(boxes[c].size(), 0.0);
+  flow.u[2] = u, flow.f_bg[2] = f;
   return flow;
 }
 
@@ -127,18 +115,171 @@ Timing run_steps(Interaction& ib, const Flow& flow, const host_vector<double>& X
   return {st::median(ti), st::median(ts)};
 }
 
-double max_abs(const host_vector<double>& v) {
-  double m = 0.0;
-  for (double x : v) m = std::max(m, std::abs(x));
-  return m;
+/// Table 4.1: one row per (device, algorithm) in order of first use, one column per refinement.
+struct Table41 {
+  std::vector<std::pair<std::vector<std::string>, std::vector<double>>> rows;
+  void put(const std::string& device, const std::string& algorithm, std::size_t column, std::size_t columns, double seconds) {
+    auto it = std::find_if(rows.begin(), rows.end(), [&](const auto& r) { return r.first == std::vector<std::string>{device, algorithm}; });
+    if (it == rows.end()) it = rows.insert(rows.end(), {{device, algorithm}, std::vector<double>(columns, NAN)});
+    it->second[column] = seconds;
+  }
+  Json json() const {
+    Json table = st::table({"device", "algorithm", "g16_seconds", "g32_seconds", "g64_seconds", "g128_seconds"}, {"", "", "s", "s", "s", "s"});
+    for (const auto& [key, t] : rows) table["rows"].push(st::row({key[0], key[1], t[0], t[1], t[2], t[3]}));
+    return table;
+  }
+};
+
+void record_parameters(Json& par, const Params& p, index_t n, int steps, int steps_serial, int threads) {
+  par["box_um"] = p.box / units::um;
+  par["points"] = double(n);
+  par["kernel"] = ib::to_string(p.kernel);
+  par["shear_rate_per_s"] = p.shear_rate;
+  par["spring_dyn_per_cm"] = p.spring;
+  par["viscosity_cP"] = p.viscosity / units::cP;
+  par["dt_us"] = p.dt / units::us;
+  par["steps_binned"] = steps;
+  par["steps_seed_algorithms"] = steps_serial;
+  par["buffer_width_sz"] = buffer_width;
+  par["threads"] = threads;
+  st::record_wait_policy(par);
+  par["load_average_at_start"] = st::load_average();  // this machine is shared: times are indicative
+  par["machine_paper"] = "48x Intel Xeon E5-2697 v2 2.70GHz (16 cores used), libiomp5, clang 7.0.1";
 }
 
-using rbfib::study::table;
+/// The largest differences to the serial algorithms, over every refinement.
+struct Agreement {
+  double spread = 0, interp = 0, conservation = 0, adjoint = 0, background = 0;
+};
+
+/// Table 4.1 / Fig. 4.3 at one refinement (column r of table41): every algorithm's time per call in
+/// the time loop, and its speedup over the serial one.
+void time_algorithms(Interaction& ib, const Flow& flow, const host_vector<double>& X0, const Params& p, int N, int steps,
+                     int steps_serial, Json& tref, const std::function<void(const std::string&, const std::string&, double)>& put41) {
+  const int max_threads = omp_get_max_threads();
+  const double h_um = p.box / N / units::um;
+  omp_set_num_threads(1);  // the serial references on one thread
+  const Timing serial = run_steps(ib, flow, X0, p, steps_serial, Interpolation::serial, Spreading::serial);
+  omp_set_num_threads(max_threads);
+  put41("1x CPU", "4.2", serial.spread);
+  put41("1x CPU", "4.3", serial.interpolate);
+  tref["rows"].push(st::row({"4.2 (spread)", N, h_um, serial.spread, 1.0}));
+  tref["rows"].push(st::row({"4.3 1 thread (interpolate)", N, h_um, serial.interpolate, 1.0}));
+  const std::string dev = std::to_string(max_threads) + "x CPU";
+  for (Interpolation a : {Interpolation::parallel, Interpolation::binned}) {
+    const Timing t = run_steps(ib, flow, X0, p, a == Interpolation::binned ? steps : steps_serial, a, Spreading::binned);
+    put41(dev, std::string(algorithm_number(a)) + (a == Interpolation::binned ? " (interpolate)" : ""), t.interpolate);
+    tref["rows"].push(st::row({std::string(algorithm_number(a)) + " (interpolate)", N, h_um, t.interpolate, serial.interpolate / t.interpolate}));
+  }
+  for (Spreading a : {Spreading::sort_reduce, Spreading::preallocated, Spreading::on_the_fly, Spreading::binned}) {
+    const Timing t = run_steps(ib, flow, X0, p, a == Spreading::binned ? steps : steps_serial, Interpolation::binned, a);
+    put41(dev, std::string(algorithm_number(a)) + (a == Spreading::binned ? " (spread)" : ""), t.spread);
+    tref["rows"].push(st::row({std::string(algorithm_number(a)) + " (spread)", N, h_um, t.spread, serial.spread / t.spread}));
+  }
+}
+
+/// Agreement with the serial algorithms at the initial positions, with a force of size k h: the
+/// relative differences, the conservation sum f h^3 = sum F per component, and the adjointness
+/// <S F, u> h^3 = <F, I u> with the shear flow as u.
+void agreement(Interaction& ib, const Flow& flow, const host_vector<double>& X0, const Params& p, int N, int repeats, Json& tdiff,
+               Json& tidiff, Agreement& w) {
+  const index_t n = X0.size() / 3;
+  const dvec X = X0;
+  host_vector<double> Fh(3 * n);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> Ud(-1.0, 1.0);
+  for (auto& v : Fh) v = Ud(rng) * p.spring * p.box / N;
+  const dvec F = Fh;
+  std::array<dvec, 3> ref, f;
+  ib.spread(X, F, ref, Spreading::serial);
+  for (Spreading a : all_spreadings()) {
+    if (a == Spreading::serial) continue;
+    const double t = st::median_seconds(repeats, [&] { ib.spread(X, F, f, a); });
+    for (int c = 0; c < 3; ++c) {
+      double total = 0.0, want = 0.0, absF = 0.0;
+      for (double v : host_vector<double>(f[c])) total += v * ib.cell_volume();
+      for (index_t k = 0; k < n; ++k) {
+        want += Fh[c * n + k];
+        absF += std::abs(Fh[c * n + k]);
+      }
+      w.conservation = std::max(w.conservation, std::abs(total - want) / absF);
+    }
+    const double rel = st::max_rel_diff(f, ref);
+    w.spread = std::max(w.spread, rel);
+    tdiff["rows"].push(st::row({algorithm_number(a), N, t, rel}));
+  }
+  dvec Uref, U;
+  ib.interpolate(X, flow.u, Uref, Interpolation::serial);
+  for (Interpolation a : {Interpolation::parallel, Interpolation::binned}) {
+    const double t = st::median_seconds(repeats, [&] { ib.interpolate(X, flow.u, U, a); });
+    const double rel = st::max_rel_diff({&U}, {&Uref});
+    w.interp = std::max(w.interp, rel);
+    tidiff["rows"].push(st::row({algorithm_number(a), N, t, rel}));
+  }
+  ib.spread(X, F, f, Spreading::binned);
+  ib.interpolate(X, flow.u, U, Interpolation::binned);
+  const host_vector<double> Uh = U;
+  double lhs = 0.0, rhs = 0.0, mag = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const host_vector<double> fh = f[c], uh = flow.u[c];
+    for (size_t m = 0; m < fh.size(); ++m) lhs += fh[m] * uh[m] * ib.cell_volume();
+  }
+  for (index_t i = 0; i < 3 * n; ++i) {
+    rhs += Fh[i] * Uh[i];
+    mag += std::abs(Fh[i] * Uh[i]);
+  }
+  w.adjoint = std::max(w.adjoint, std::abs(lhs - rhs) / mag);
+}
+
+/// Fig. 4.4: strong scaling at refinement 64, Algs. 4.3 / 4.6 and the binned ones, 1 ... all threads.
+Json strong_scaling(const Params& p, const host_vector<double>& X0, int steps, int steps_serial) {
+  const int max_threads = omp_get_max_threads();
+  Json tstrong = st::table({"threads", "algorithm", "seconds", "speedup_vs_serial"}, {"", "", "s", ""});
+  const auto boxes = mac_boxes({64, 64, 64}, {p.box, p.box, p.box}, {true, true, true});
+  Interaction ib(boxes, p.kernel);
+  const Flow flow = shear_flow(boxes, p);
+  omp_set_num_threads(1);
+  const Timing serial = run_steps(ib, flow, X0, p, steps_serial, Interpolation::serial, Spreading::serial);
+  for (int threads = 1; threads <= max_threads; threads *= 2) {
+    omp_set_num_threads(threads);
+    const Timing a = run_steps(ib, flow, X0, p, steps_serial, Interpolation::parallel, Spreading::on_the_fly);
+    const Timing b = run_steps(ib, flow, X0, p, steps, Interpolation::binned, Spreading::binned);
+    tstrong["rows"].push(st::row({threads, "4.3 (interpolate)", a.interpolate, serial.interpolate / a.interpolate}));
+    tstrong["rows"].push(st::row({threads, "4.6 (spread)", a.spread, serial.spread / a.spread}));
+    tstrong["rows"].push(st::row({threads, "binned (interpolate)", b.interpolate, serial.interpolate / b.interpolate}));
+    tstrong["rows"].push(st::row({threads, "binned (spread)", b.spread, serial.spread / b.spread}));
+    if (threads < max_threads && threads * 2 > max_threads) threads = max_threads / 2;
+  }
+  omp_set_num_threads(max_threads);
+  return tstrong;
+}
+
+/// Table 4.2: weak scaling at refinement 64 (h = 0.25 um), points doubling with threads while this
+/// machine has them; beyond, the thread count stays at its maximum.
+Json weak_scaling(const Params& p, const std::vector<index_t>& weak_n, int steps_binned, int steps_serial) {
+  const int max_threads = omp_get_max_threads();
+  Json t42 = st::table({"p", "n", "interpolation_seconds", "spreading_seconds", "spreading_binned_seconds", "interpolation_binned_seconds"},
+                       {"", "", "s", "s", "s", "s"});
+  const auto boxes = mac_boxes({64, 64, 64}, {p.box, p.box, p.box}, {true, true, true});
+  Interaction ib(boxes, p.kernel);
+  const Flow flow = shear_flow(boxes, p);
+  for (size_t i = 0; i < weak_n.size(); ++i) {
+    const int threads = std::min<int>(1 << i, max_threads);
+    omp_set_num_threads(threads);
+    const host_vector<double> X = random_points(weak_n[i], p.box, 99 + i);
+    const Timing a = run_steps(ib, flow, X, p, steps_serial, Interpolation::parallel, Spreading::on_the_fly);
+    const Timing b = run_steps(ib, flow, X, p, steps_binned, Interpolation::binned, Spreading::binned);
+    t42["rows"].push(st::row({threads, double(weak_n[i]), a.interpolate, a.spread, b.spread, b.interpolate}));
+  }
+  omp_set_num_threads(max_threads);
+  return t42;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   return st::run_main("chapter4_unstructured", [&] {
+    // ---- Parameters ---------------------------------------------------------------------------
     const st::Options opt = st::parse_command_line(argc, argv, "chapter4_unstructured",
                                                    "Seed Sec. 4.2.1: interpolation and spreading of random tethered points (Table 4.1/4.2, Fig. 4.3/4.4)");
     const bool full = opt.scale == st::Scale::full;
@@ -146,216 +287,49 @@ int main(int argc, char** argv) {
     const index_t n = index_t(1) << 16;
     const std::vector<int> refinements = {16, 32, 64, 128};
     // Steps per timing: the binned variants are cheap, the seed's algorithms (literal per-shift
-    // weights, one pass per shift) are not; full scale uses 200 steps (the seed averaged over
-    // 1000), and 20 for those.
-    const int steps = full ? 200 : 10;
-    const int steps_serial = full ? 20 : 1;
-    const int max_threads = omp_get_max_threads();
+    // weights, one pass per shift) are not; full scale 200 steps (the seed averaged over 1000), 20 for those.
+    const int steps = full ? 200 : 10, steps_serial = full ? 20 : 1, max_threads = omp_get_max_threads();
     std::vector<index_t> weak_n = {index_t(1) << 16, index_t(1) << 17, index_t(1) << 18, index_t(1) << 19};
     if (!full) weak_n.resize(3);
-
     Json results = st::make_results(opt);
-    Json& par = results["parameters"];
-    par["box_um"] = p.box / units::um;
-    par["points"] = double(n);
-    par["kernel"] = ib::to_string(p.kernel);
-    par["shear_rate_per_s"] = p.shear_rate;
-    par["spring_dyn_per_cm"] = p.spring;
-    par["viscosity_cP"] = p.viscosity / units::cP;
-    par["dt_us"] = p.dt / units::us;
-    par["steps_binned"] = steps;
-    par["steps_seed_algorithms"] = steps_serial;
-    par["buffer_width_sz"] = buffer_width;
-    par["threads"] = max_threads;
-    {
-      const char* policy = std::getenv("OMP_WAIT_POLICY");
-      par["OMP_WAIT_POLICY"] = policy ? policy : "unset (libgomp default: spin, then sleep)";
-      std::ifstream in("/proc/loadavg");
-      double load = NAN;
-      in >> load;
-      par["load_average_at_start"] = load;  // this machine is shared: times are indicative
-    }
-    par["machine_paper"] = "48x Intel Xeon E5-2697 v2 2.70GHz (16 cores used), libiomp5, clang 7.0.1";
-    st::log(opt, "parameters: n = " + std::to_string(n) + ", box = 16 um, kernel " + std::string(ib::to_string(p.kernel)) + ", gamma_dot = 1000/s, k = 1e-2 dyn/cm, dt = 0.1 us, " +
-                     std::to_string(steps) + " steps (" + std::to_string(steps_serial) + " for the serial algorithms), " +
-                     std::to_string(max_threads) + " threads");
-
+    record_parameters(results["parameters"], p, n, steps, steps_serial, max_threads);
+    st::log(opt, "parameters: n = " + std::to_string(n) + ", " + std::to_string(steps) + " steps (" + std::to_string(steps_serial) +
+                     " for the serial algorithms), " + std::to_string(max_threads) + " threads");
     const host_vector<double> X0 = random_points(n, p.box, 2024);
 
-    // 1. Table 4.1 / Fig. 4.3: time per call against grid refinement.
-    Json t41 = table({"device", "algorithm", "g16_seconds", "g32_seconds", "g64_seconds", "g128_seconds"}, {"", "", "s", "s", "s", "s"});
-    Json tref = table({"algorithm", "refinement", "h_um", "seconds", "speedup_vs_serial"}, {"", "", "um", "s", ""});
-    Json tdiff = table({"algorithm", "refinement", "seconds", "max_rel_diff_vs_serial"}, {"", "", "s", ""});
-    Json tidiff = table({"algorithm", "refinement", "seconds", "max_rel_diff_vs_serial"}, {"", "", "s", ""});
-    struct Row {
-      std::string device, algorithm;
-      std::vector<double> t;
-    };
-    std::vector<Row> rows41;
-    double worst_spread = 0.0, worst_interp = 0.0, worst_conservation = 0.0, worst_adjoint = 0.0, max_bg = 0.0;
+    // ---- 1. Table 4.1 / Fig. 4.3: time per call against grid refinement; agreement with serial ----
+    Json tref = st::table({"algorithm", "refinement", "h_um", "seconds", "speedup_vs_serial"}, {"", "", "um", "s", ""});
+    Json tdiff = st::table({"algorithm", "refinement", "seconds", "max_rel_diff_vs_serial"}, {"", "", "s", ""});
+    Json tidiff = tdiff;
+    Table41 t41;
+    Agreement w;
     for (size_t r = 0; r < refinements.size(); ++r) {
       const int N = refinements[r];
       const auto boxes = mac_boxes({N, N, N}, {p.box, p.box, p.box}, {true, true, true});
       Interaction ib(boxes, p.kernel);
       const Flow flow = shear_flow(boxes, p);
-      max_bg = std::max(max_bg, flow.max_background);
+      w.background = std::max(w.background, flow.max_background);
       st::log(opt, "1. refinement " + std::to_string(N) + " (h = " + std::to_string(p.box / N / units::um) + " um)");
-      // serial references: one thread
-      omp_set_num_threads(1);
-      const Timing serial = run_steps(ib, flow, X0, p, steps_serial, Interpolation::serial, Spreading::serial);
-      omp_set_num_threads(max_threads);
-      auto put41 = [&](const std::string& dev, const std::string& alg, double t) {
-        auto it = std::find_if(rows41.begin(), rows41.end(), [&](const Row& w) { return w.device == dev && w.algorithm == alg; });
-        if (it == rows41.end()) {
-          rows41.push_back({dev, alg, std::vector<double>(refinements.size(), NAN)});
-          it = rows41.end() - 1;
-        }
-        it->t[r] = t;
-      };
-      put41("1x CPU", "4.2", serial.spread);
-      put41("1x CPU", "4.3", serial.interpolate);
-      tref["rows"].push(Json::Array{Json("4.2 (spread)"), Json(N), Json(p.box / N / units::um), Json(serial.spread), Json(1.0)});
-      tref["rows"].push(Json::Array{Json("4.3 1 thread (interpolate)"), Json(N), Json(p.box / N / units::um), Json(serial.interpolate), Json(1.0)});
-      const std::string dev = std::to_string(max_threads) + "x CPU";
-      for (Interpolation a : {Interpolation::parallel, Interpolation::binned}) {
-        const Timing t = run_steps(ib, flow, X0, p, a == Interpolation::binned ? steps : steps_serial, a, Spreading::binned);
-        put41(dev, std::string(algorithm_number(a)) + (a == Interpolation::binned ? " (interpolate)" : ""), t.interpolate);
-        tref["rows"].push(Json::Array{Json(std::string(algorithm_number(a)) + " (interpolate)"), Json(N), Json(p.box / N / units::um), Json(t.interpolate),
-                                      Json(serial.interpolate / t.interpolate)});
-      }
-      for (Spreading a : {Spreading::sort_reduce, Spreading::preallocated, Spreading::on_the_fly, Spreading::binned}) {
-        const Timing t = run_steps(ib, flow, X0, p, a == Spreading::binned ? steps : steps_serial, Interpolation::binned, a);
-        put41(dev, std::string(algorithm_number(a)) + (a == Spreading::binned ? " (spread)" : ""), t.spread);
-        tref["rows"].push(Json::Array{Json(std::string(algorithm_number(a)) + " (spread)"), Json(N), Json(p.box / N / units::um), Json(t.spread),
-                                      Json(serial.spread / t.spread)});
-      }
-
-      // Agreement with the serial algorithms at the initial positions, with a force of size k h.
-      const dvec X = X0;
-      host_vector<double> Fh(3 * n);
-      std::mt19937_64 rng(7);
-      std::uniform_real_distribution<double> Ud(-1.0, 1.0);
-      for (auto& v : Fh) v = Ud(rng) * p.spring * p.box / N;
-      const dvec F = Fh;
-      std::array<dvec, 3> ref;
-      ib.spread(X, F, ref, Spreading::serial);
-      double scale = 0.0;
-      std::array<host_vector<double>, 3> refh;
-      for (int c = 0; c < 3; ++c) {
-        refh[c] = ref[c];
-        scale = std::max(scale, max_abs(refh[c]));
-      }
-      for (Spreading a : all_spreadings()) {
-        if (a == Spreading::serial) continue;
-        std::array<dvec, 3> f;
-        const double t = st::median_seconds(full ? 5 : 1, [&] { ib.spread(X, F, f, a); });
-        double diff = 0.0;
-        for (int c = 0; c < 3; ++c) {
-          host_vector<double> fh = f[c];
-          for (size_t m = 0; m < fh.size(); ++m) diff = std::max(diff, std::abs(fh[m] - refh[c][m]));
-          // conservation: sum f h^3 = sum F per component
-          double total = 0.0, want = 0.0, absF = 0.0;
-          for (double v : fh) total += v * ib.cell_volume();
-          for (index_t k = 0; k < n; ++k) {
-            want += Fh[c * n + k];
-            absF += std::abs(Fh[c * n + k]);
-          }
-          worst_conservation = std::max(worst_conservation, std::abs(total - want) / absF);
-        }
-        worst_spread = std::max(worst_spread, diff / scale);
-        tdiff["rows"].push(Json::Array{Json(algorithm_number(a)), Json(N), Json(t), Json(diff / scale)});
-      }
-      dvec Uref, U;
-      ib.interpolate(X, flow.u, Uref, Interpolation::serial);
-      const host_vector<double> Urefh = Uref;
-      const double uscale = max_abs(Urefh);
-      for (Interpolation a : {Interpolation::parallel, Interpolation::binned}) {
-        const double t = st::median_seconds(full ? 5 : 1, [&] { ib.interpolate(X, flow.u, U, a); });
-        const host_vector<double> Uh = U;
-        double diff = 0.0;
-        for (size_t i = 0; i < Uh.size(); ++i) diff = std::max(diff, std::abs(Uh[i] - Urefh[i]));
-        worst_interp = std::max(worst_interp, diff / uscale);
-        tidiff["rows"].push(Json::Array{Json(algorithm_number(a)), Json(N), Json(t), Json(diff / uscale)});
-      }
-      // Adjointness <S F, u> h^3 = <F, I u> with the shear flow as u.
-      {
-        std::array<dvec, 3> f;
-        ib.spread(X, F, f, Spreading::binned);
-        ib.interpolate(X, flow.u, U, Interpolation::binned);
-        const host_vector<double> Uh = U;
-        double lhs = 0.0, rhs = 0.0, mag = 0.0;
-        for (int c = 0; c < 3; ++c) {
-          host_vector<double> fh = f[c], uh = flow.u[c];
-          for (size_t m = 0; m < fh.size(); ++m) lhs += fh[m] * uh[m] * ib.cell_volume();
-        }
-        for (index_t i = 0; i < 3 * n; ++i) {
-          rhs += Fh[i] * Uh[i];
-          mag += std::abs(Fh[i] * Uh[i]);
-        }
-        worst_adjoint = std::max(worst_adjoint, std::abs(lhs - rhs) / mag);
-      }
-    }
-    for (const Row& w : rows41) {
-      Json::Array row{Json(w.device), Json(w.algorithm)};
-      for (double t : w.t) row.push_back(Json(t));
-      t41["rows"].push(Json(row));
+      time_algorithms(ib, flow, X0, p, N, steps, steps_serial, tref, [&](auto& dev, auto& alg, double t) { t41.put(dev, alg, r, refinements.size(), t); });
+      agreement(ib, flow, X0, p, N, full ? 5 : 1, tdiff, tidiff, w);
     }
 
-    // 2. Fig. 4.4: strong scaling at refinement 64, 2^16 points.
+    // ---- 2. Fig. 4.4 and 3. Table 4.2: strong and weak scaling at refinement 64 -------------------
     st::log(opt, "2. strong scaling, refinement 64, threads 1.." + std::to_string(max_threads));
-    Json tstrong = table({"threads", "algorithm", "seconds", "speedup_vs_serial"}, {"", "", "s", ""});
-    {
-      const auto boxes = mac_boxes({64, 64, 64}, {p.box, p.box, p.box}, {true, true, true});
-      Interaction ib(boxes, p.kernel);
-      const Flow flow = shear_flow(boxes, p);
-      omp_set_num_threads(1);
-      const Timing serial = run_steps(ib, flow, X0, p, steps_serial, Interpolation::serial, Spreading::serial);
-      for (int threads = 1; threads <= max_threads; threads *= 2) {
-        omp_set_num_threads(threads);
-        const Timing a = run_steps(ib, flow, X0, p, steps_serial, Interpolation::parallel, Spreading::on_the_fly);
-        const Timing b = run_steps(ib, flow, X0, p, steps, Interpolation::binned, Spreading::binned);
-        tstrong["rows"].push(Json::Array{Json(threads), Json("4.3 (interpolate)"), Json(a.interpolate), Json(serial.interpolate / a.interpolate)});
-        tstrong["rows"].push(Json::Array{Json(threads), Json("4.6 (spread)"), Json(a.spread), Json(serial.spread / a.spread)});
-        tstrong["rows"].push(Json::Array{Json(threads), Json("binned (interpolate)"), Json(b.interpolate), Json(serial.interpolate / b.interpolate)});
-        tstrong["rows"].push(Json::Array{Json(threads), Json("binned (spread)"), Json(b.spread), Json(serial.spread / b.spread)});
-        if (threads < max_threads && threads * 2 > max_threads) threads = max_threads / 2;
-      }
-      omp_set_num_threads(max_threads);
-    }
-
-    // 3. Table 4.2: weak scaling at refinement 64 (h = 0.25 um), points doubling with threads
-    //    while this machine has them; beyond, the thread count stays at its maximum.
-    st::log(opt, "3. weak scaling");
-    Json t42 = table({"p", "n", "interpolation_seconds", "spreading_seconds", "spreading_binned_seconds", "interpolation_binned_seconds"},
-                     {"", "", "s", "s", "s", "s"});
-    {
-      const auto boxes = mac_boxes({64, 64, 64}, {p.box, p.box, p.box}, {true, true, true});
-      Interaction ib(boxes, p.kernel);
-      const Flow flow = shear_flow(boxes, p);
-      for (size_t i = 0; i < weak_n.size(); ++i) {
-        const int threads = std::min<int>(1 << i, max_threads);
-        omp_set_num_threads(threads);
-        const host_vector<double> X = random_points(weak_n[i], p.box, 99 + i);
-        const Timing a = run_steps(ib, flow, X, p, steps_serial, Interpolation::parallel, Spreading::on_the_fly);
-        const Timing b = run_steps(ib, flow, X, p, full ? 100 : steps, Interpolation::binned, Spreading::binned);
-        t42["rows"].push(Json::Array{Json(threads), Json(double(weak_n[i])), Json(a.interpolate), Json(a.spread), Json(b.spread), Json(b.interpolate)});
-      }
-      omp_set_num_threads(max_threads);
-    }
-
-    results["tables"]["table41"] = t41;
+    results["tables"]["table41"] = t41.json();
     results["tables"]["refinement"] = tref;
     results["tables"]["spreading_vs_serial"] = tdiff;
     results["tables"]["interpolation_vs_serial"] = tidiff;
-    results["tables"]["strong_scaling"] = tstrong;
-    results["tables"]["table42"] = t42;
+    results["tables"]["strong_scaling"] = strong_scaling(p, X0, steps, steps_serial);
+    st::log(opt, "3. weak scaling");
+    results["tables"]["table42"] = weak_scaling(p, weak_n, full ? 100 : steps, steps_serial);
     Json& v = results["values"];
-    v["max_rel_diff_spread_vs_serial"] = worst_spread;
-    v["max_rel_diff_interpolation_vs_serial"] = worst_interp;
-    v["max_rel_conservation_error"] = worst_conservation;
-    v["adjointness_rel_error"] = worst_adjoint;
-    v["max_background_force_dyn_per_cm3"] = max_bg;
-    st::log(opt, "max relative difference to serial: spreading " + std::to_string(worst_spread) + ", interpolation " + std::to_string(worst_interp));
+    v["max_rel_diff_spread_vs_serial"] = w.spread;
+    v["max_rel_diff_interpolation_vs_serial"] = w.interp;
+    v["max_rel_conservation_error"] = w.conservation;
+    v["adjointness_rel_error"] = w.adjoint;
+    v["max_background_force_dyn_per_cm3"] = w.background;
+    st::log(opt, "max relative difference to serial: spreading " + std::to_string(w.spread) + ", interpolation " + std::to_string(w.interp));
     st::write_results(opt, results);
     return 0;
   });

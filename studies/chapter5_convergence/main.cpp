@@ -8,20 +8,17 @@
 //   X: the surface at 1000 Bauer-spiral points of the sphere, evaluated from each run's data
 //      sites by its own interpolant; L2 norm of eq. 5.2 with the weights omega_j / cos(phi_j) of
 //      the sphere (eq. 2.22, phi = r), L_inf of eq. 5.3;
-// and orders p from successive ratios by the seed's formula
-//   eps_r / eps_{r+1} = |((r+1)/r)^p - 1| / |((r+2)/(r+1))^{-p} - 1|, solved for p
-// (exact for eps_r = |u_r - u_{r+1}| when u_r = u + C h_r^p, h_r = h_1 / r). The seed's printed
-// orders are this formula one index higher: its row r holds p from eps_{r-2} / eps_{r-1} solved
-// with r - 1 in place of r - 2; the columns order_*_seed_index repeat that, row by row.
-// Each grid's run is built from a scene (docs/scenes.md) kept beside the results as
-// DIR/scene_r<r>.yaml, which `build/bin/rbfib run` reruns, and goes through the library's run
-// loop: at full scale with a checkpoint (DIR/checkpoint_r<r>.h5), so that the hours-long grids
-// continue over sittings (--sitting SECONDS).
+// and orders p from successive ratios by the seed's formula (core/series.hpp, successive_order).
+// The seed's printed orders are this formula one index higher: its row r holds p from
+// eps_{r-2} / eps_{r-1} solved with r - 1 in place of r - 2 (the columns order_*_seed_index).
+// Each grid's scene is kept as DIR/scene_r<r>.yaml (`build/bin/rbfib run` reruns it); at full
+// scale its run keeps DIR/checkpoint_r<r>.h5 and continues over sittings (--sitting SECONDS).
 //
 // Run:   build/studies/study_chapter5_convergence --scale quick --out runs/chapter5_convergence
 #include "common/study.hpp"
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/error.hpp"
+#include "rbfib/core/series.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/run/run.hpp"
 #include "rbfib/scene/scene.hpp"
@@ -30,31 +27,15 @@
 #include "rbfib/surface/point_sets.hpp"
 #include "rbfib/surface/quadrature.hpp"
 
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <cmath>
+#include <fstream>
 
 using namespace rbfib;
 namespace st = rbfib::study;
 using st::Json;
+using st::row;
 
 namespace {
-
-/// p with eps_r / eps_{r+1} = |((r+1)/r)^p - 1| / |((r+2)/(r+1))^{-p} - 1| (bisection; the right
-/// side grows with p). NaN when the ratio is out of reach.
-double seed_order(double ratio, int r) {
-  auto g = [r](double p) {
-    return std::abs(std::pow((r + 1.0) / r, p) - 1) / std::abs(std::pow((r + 2.0) / (r + 1.0), -p) - 1);
-  };
-  double lo = 1e-3, hi = 30;
-  if (!(ratio > g(lo) && ratio < g(hi))) return NAN;
-  for (int it = 0; it < 200; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (g(mid) < ratio ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
 
 struct Run {
   int r = 0;
@@ -144,6 +125,86 @@ Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& 
   return run;
 }
 
+/// The centres of the r = 1 grid's 20^3 cells (3 x 8000, cm), where the velocities are compared.
+dvec coarse_centres() {
+  const index_t nc = 20 * 20 * 20;
+  host_vector<double> ch(3 * nc);
+  for (index_t q = 0; q < nc; ++q)
+    for (int d = 0; d < 3; ++d) ch[d * nc + q] = (double(d == 0 ? q % 20 : d == 1 ? q / 20 % 20 : q / 400) + 0.5) * 0.8 * units::um;
+  return ch;
+}
+
+/// The L2 (eq. 5.2) and L_inf (eq. 5.3) differences between two grids' runs: of the velocity at the
+/// coarse cell centres (the root mean square over the centres), and of the surface at the
+/// evaluation points (weights omega_j / cos(phi_j) of the sphere, eq. 2.22; um).
+struct Errors {
+  double u2 = 0, uinf = 0, x2 = 0, xinf = 0;
+};
+Errors errors(const Run& ra, const Run& rb, const surface::SphereSites& eval, const std::vector<double>& w) {
+  Errors e;
+  const host_vector<double> a = ra.u_centres, b = rb.u_centres;
+  const std::size_t nc = a.size() / 3, n = w.size();
+  for (std::size_t q = 0; q < nc; ++q) {
+    double e2 = 0;
+    for (std::size_t d = 0; d < 3; ++d) e2 += std::pow(a[d * nc + q] - b[d * nc + q], 2);
+    e.u2 += e2 / double(index_t(nc)), e.uinf = std::max(e.uinf, std::sqrt(e2));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    double e2 = 0;
+    for (std::size_t d = 0; d < 3; ++d) e2 += std::pow((ra.X[d * n + i] - rb.X[d * n + i]) / units::um, 2);
+    e.x2 += w[i] / std::cos(eval.theta[i]) * e2, e.xinf = std::max(e.xinf, std::sqrt(e2));
+  }
+  e.u2 = std::sqrt(e.u2), e.x2 = std::sqrt(e.x2);
+  return e;
+}
+
+/// Tables 5.1 and 5.2 from the finished grids, each grid recorded as a run (grid_r<r>, finished once
+/// its state at t_end is in hand; `unfinished` the one this sitting ended in), written to results.json.
+void write(const st::Options& opt, Json results, const std::vector<Run>& runs, const Run& unfinished, int r_max, double t_end,
+           const surface::SphereSites& eval, const std::vector<double>& w) {
+  Json tu = st::table({"r", "u_err_2", "order_2", "u_err_inf", "order_inf", "order_2_seed_index", "order_inf_seed_index", "seconds"},
+                      {"", "cm/s", "", "cm/s", "", "", "", "s"});
+  Json tx = st::table({"r", "X_err_2", "order_2", "X_err_inf", "order_inf", "order_2_seed_index", "order_inf_seed_index", "seconds"},
+                      {"", "um", "", "um", "", "", "", "s"});
+  std::vector<double> eu2, euinf, ex2, exinf;
+  for (std::size_t k = 0; k + 1 < runs.size(); ++k) {
+    const Errors e = errors(runs[k], runs[k + 1], eval, w);
+    eu2.push_back(e.u2), euinf.push_back(e.uinf), ex2.push_back(e.x2), exinf.push_back(e.xinf);
+  }
+  Json& V = results["values"];
+  for (std::size_t k = 0; k < eu2.size(); ++k) {
+    const int r = int(k) + 1;
+    // As the formula is written: eps_{r-1} / eps_r with r - 1; as the seed's tables print it: eps_{r-2} / eps_{r-1} with r - 1.
+    auto order = [&](const std::vector<double>& e) { return k >= 1 ? Json(successive_order(e[k - 1] / e[k], r - 1)) : Json(); };
+    auto printed = [&](const std::vector<double>& e) { return k >= 2 ? Json(successive_order(e[k - 2] / e[k - 1], r - 1)) : Json(); };
+    tu["rows"].push(row({r, eu2[k], order(eu2), euinf[k], order(euinf), printed(eu2), printed(euinf), runs[k].seconds}));
+    tx["rows"].push(row({r, ex2[k], order(ex2), exinf[k], order(exinf), printed(ex2), printed(exinf), runs[k].seconds}));
+    if (k >= 1)
+      for (auto [name, e] : {std::pair{"u_2", &eu2}, {"u_inf", &euinf}, {"X_2", &ex2}, {"X_inf", &exinf}})
+        V[std::string("last_order_") + name] = successive_order((*e)[k - 1] / (*e)[k], r - 1);
+  }
+  double worst_volume = 0;
+  for (const Run& run : runs) worst_volume = std::max(worst_volume, std::abs(run.volume_change));
+  V["max_volume_change_rel"] = worst_volume;
+  Json tr = st::table({"r", "h_um", "dt_ns", "steps", "seconds", "seconds_per_step", "volume_change_rel", "commit"}, {"", "um", "ns", "", "s", "s", "", ""});
+  for (const Run& run : runs)
+    tr["rows"].push(row({run.r, 0.8 / run.r, 180.0 / run.r, run.steps, run.seconds, run.seconds / run.steps, run.volume_change, run.commit}));
+  results["tables"]["runs"] = tr;
+  results["tables"]["table51_velocity"] = tu;
+  results["tables"]["table52_positions"] = tx;
+  V["grids_completed"] = double(runs.size());
+  for (int r = 1; r <= r_max; ++r) {
+    st::RunProgress p;
+    p.t_end = t_end;
+    for (const Run& run : runs)
+      if (run.r == r) p = {true, t_end, t_end, long(run.steps), run.seconds_per_step, ""};
+    if (unfinished.r == r)  // how far this sitting took it
+      p = {false, unfinished.steps * 180 * units::ns / r, t_end, long(unfinished.steps), unfinished.seconds_per_step, ""};
+    st::record_run(results, "grid_r" + to_text(r), p);
+  }
+  st::write_results(opt, results);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -155,8 +216,6 @@ int main(int argc, char** argv) {
     // Quick scale stops at 36 us (a fifth of the seed's 180 us): r = 3 alone takes 5 minutes here
     // for 180 us. Full scale runs the seed's time.
     const double t_end = (full ? 180 : 36) * units::us;
-
-    // ---- 1. Parameters and the comparison points ---------------------------------------------
     Json results = st::make_results(opt);
     Json& P = results["parameters"];
     P["box_um"] = "16 x 16 x 16; walls at rest in y, periodic in x and z; fluid at rest initially";
@@ -165,96 +224,12 @@ int main(int argc, char** argv) {
     P["grids"] = "20 r cells per 16 um, h = 0.8/r um, dt = 180/r ns, n_d = 125 r^2, n_s = 500 r^2, r = 1.." + to_text(r_max);
     P["t_end_us"] = t_end / units::us;
     P["fluid"] = "rho = 1 g/cm^3, mu = 1 cP (the seed's public code; Sec. 2.1 prints 0.1 cP while saying plasma behaves like water)";
-    const index_t nc = 20 * 20 * 20;
-    host_vector<double> ch(3 * nc);
-    for (int k = 0; k < 20; ++k)
-      for (int j = 0; j < 20; ++j)
-        for (int i = 0; i < 20; ++i) {
-          const index_t q = i + 20 * (j + 20 * k);
-          ch[q] = (i + 0.5) * 0.8 * units::um;
-          ch[nc + q] = (j + 0.5) * 0.8 * units::um;
-          ch[2 * nc + q] = (k + 0.5) * 0.8 * units::um;
-        }
-    const dvec centres = ch;
+    const dvec centres = coarse_centres();
     const surface::SphereSites eval = surface::bauer_spiral(1000);
     const std::vector<double> w = surface::rbf_sphere_weights(eval, 1).w;  // eq. 2.22, phi = r
 
-    // ---- 3. Errors between successive grids and the seed's orders (Tables 5.1, 5.2) ------------
-    // Written after every finished grid at full scale (a run stopped before r = 6 leaves the
-    // tables of the grids it has, values.grids_completed saying how many), and at the end.
-    auto write = [&](const std::vector<Run>& runs, const Run& unfinished, Json results) {
-      Json tu = st::table({"r", "u_err_2", "order_2", "u_err_inf", "order_inf", "order_2_seed_index", "order_inf_seed_index", "seconds"},
-                          {"", "cm/s", "", "cm/s", "", "", "", "s"});
-      Json tx = st::table({"r", "X_err_2", "order_2", "X_err_inf", "order_inf", "order_2_seed_index", "order_inf_seed_index", "seconds"},
-                          {"", "um", "", "um", "", "", "", "s"});
-      std::vector<double> eu2, euinf, ex2, exinf;
-      for (std::size_t k = 0; k + 1 < runs.size(); ++k) {
-        const host_vector<double> a = runs[k].u_centres, b = runs[k + 1].u_centres;
-        double s2 = 0, sinf = 0;
-        for (index_t q = 0; q < nc; ++q) {
-          double e2 = 0;
-          for (int d = 0; d < 3; ++d) e2 += std::pow(a[d * nc + q] - b[d * nc + q], 2);
-          s2 += e2 / nc;
-          sinf = std::max(sinf, std::sqrt(e2));
-        }
-        eu2.push_back(std::sqrt(s2));
-        euinf.push_back(sinf);
-        const std::vector<double>&Xa = runs[k].X, &Xb = runs[k + 1].X;
-        const std::size_t n = w.size();
-        double x2 = 0, xinf = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-          double e2 = 0;
-          for (int d = 0; d < 3; ++d) e2 += std::pow((Xa[d * n + i] - Xb[d * n + i]) / units::um, 2);
-          x2 += w[i] / std::cos(eval.theta[i]) * e2;  // eq. 5.2 with omega_j / cos(phi_j)
-          xinf = std::max(xinf, std::sqrt(e2));
-        }
-        ex2.push_back(std::sqrt(x2));
-        exinf.push_back(xinf);
-      }
-      Json& V = results["values"];
-      double worst_volume = 0;
-      for (const Run& run : runs) worst_volume = std::max(worst_volume, std::abs(run.volume_change));
-      for (std::size_t k = 0; k < eu2.size(); ++k) {
-        const int r = int(k) + 1;
-        // As the formula is written: eps_{r-1} / eps_r with r - 1.
-        auto order = [&](const std::vector<double>& e) { return k >= 1 ? Json(seed_order(e[k - 1] / e[k], r - 1)) : Json(); };
-        // As the seed's tables print it: eps_{r-2} / eps_{r-1} with r - 1.
-        auto printed = [&](const std::vector<double>& e) { return k >= 2 ? Json(seed_order(e[k - 2] / e[k - 1], r - 1)) : Json(); };
-        tu["rows"].push(Json::Array{Json(r), Json(eu2[k]), order(eu2), Json(euinf[k]), order(euinf), printed(eu2), printed(euinf),
-                                    Json(runs[k].seconds)});
-        tx["rows"].push(Json::Array{Json(r), Json(ex2[k]), order(ex2), Json(exinf[k]), order(exinf), printed(ex2), printed(exinf),
-                                    Json(runs[k].seconds)});
-        if (k >= 1) {
-          V["last_order_u_2"] = seed_order(eu2[k - 1] / eu2[k], r - 1);
-          V["last_order_u_inf"] = seed_order(euinf[k - 1] / euinf[k], r - 1);
-          V["last_order_X_2"] = seed_order(ex2[k - 1] / ex2[k], r - 1);
-          V["last_order_X_inf"] = seed_order(exinf[k - 1] / exinf[k], r - 1);
-        }
-      }
-      V["max_volume_change_rel"] = worst_volume;
-      Json tr = st::table({"r", "h_um", "dt_ns", "steps", "seconds", "seconds_per_step", "volume_change_rel", "commit"},
-                          {"", "um", "ns", "", "s", "s", "", ""});
-      for (const Run& run : runs)
-        tr["rows"].push(Json::Array{Json(run.r), Json(0.8 / run.r), Json(180.0 / run.r), Json(run.steps), Json(run.seconds),
-                                    Json(run.seconds / run.steps), Json(run.volume_change), Json(run.commit)});
-      results["tables"]["runs"] = tr;
-      results["tables"]["table51_velocity"] = tu;
-      results["tables"]["table52_positions"] = tx;
-      results["values"]["grids_completed"] = double(runs.size());
-      // Each grid is one run (grid_r<r>): finished once its state at t_end is in hand.
-      for (int r = 1; r <= r_max; ++r) {
-        st::RunProgress p;
-        p.t_end = t_end;
-        for (const Run& run : runs)
-          if (run.r == r) p = {true, t_end, t_end, long(run.steps), run.seconds_per_step, ""};
-        if (unfinished.r == r)  // how far this sitting took it
-          p = {false, unfinished.steps * 180 * units::ns / r, t_end, long(unfinished.steps), unfinished.seconds_per_step, ""};
-        st::record_run(results, "grid_r" + to_text(r), p);
-      }
-      st::write_results(opt, results);
-    };
-
-    // ---- 2. Runs ---------------------------------------------------------------------------------
+    // The grids in turn; at full scale the tables are written after every finished grid (a run
+    // stopped before r = 6 leaves those of the grids it has), and at the end.
     std::vector<Run> runs;
     Run unfinished;  // the grid this sitting ended in, if one
     const st::Sitting sitting(opt);  // full scale: the wall time of this sitting, over the grids
@@ -268,10 +243,9 @@ int main(int argc, char** argv) {
         break;
       }
       runs.push_back(std::move(run));
-      if (full && runs.size() >= 2) write(runs, unfinished, results);
+      if (full && runs.size() >= 2) write(opt, results, runs, unfinished, r_max, t_end, eval, w);
     }
-
-    write(runs, unfinished, results);
+    write(opt, results, runs, unfinished, r_max, t_end, eval, w);
     return 0;
   });
 }

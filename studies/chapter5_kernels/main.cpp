@@ -45,7 +45,7 @@ double stagger(int c, int a) { return a == c ? 1.0 : 0.5; }
 
 /// One row of the properties table: sums over j of phi(r - j) for r = m / 1000, m = 0..999.
 template <class K>
-Json::Array properties() {
+Json properties() {
   double pou = 0, m1 = 0, sq_min = INFINITY, sq_max = 0, m2_min = INFINITY, m2_max = 0, even_odd = 0;
   int support = 0;
   for (int m = 0; m < 1000; ++m) {
@@ -68,8 +68,7 @@ Json::Array properties() {
     even_odd = std::max(even_odd, std::abs(even - 0.5));
     support = std::max(support, nonzero);
   }
-  return {Json(K::name), Json(support), Json(pou), Json(m1), Json(sq_min), Json(sq_max), Json(m2_min), Json(m2_max), Json(K::phi(0.0)),
-          Json(even_odd)};
+  return st::row({K::name, support, pou, m1, sq_min, sq_max, m2_min, m2_max, K::phi(0.0), even_odd});
 }
 
 /// delta_h interpolation of f at X for MAC component c by the literal sum of eq. 4.4.
@@ -107,17 +106,79 @@ double direct_error(const std::vector<double>& X, int N, std::vector<double>& U)
   }
   return err;
 }
+
+/// Fig. 5.1 (phi(r) on [-2.5, 2.5]) and the properties over 1000 offsets, every kernel.
+void kernel_shapes(Json& results) {
+  Json fig = st::table({"kernel", "figure", "r", "phi"}, {"", "", "h", ""});
+  Json props = st::table({"kernel", "support", "partition_err", "first_moment", "sumsq_min", "sumsq_max", "second_moment_min",
+                          "second_moment_max", "phi0", "even_odd_err"},
+                         {"", "h", "", "h", "", "", "h^2", "h^2", "", ""});
+  for (const std::string& name : kernel_names())
+    with_kernel(kernel_named(name), [&](auto kernel) {
+      using K = decltype(kernel);
+      for (int m = 0; m <= 500; ++m) {
+        const double r = (m - 250) / 100.0;
+        fig["rows"].push(st::row({K::name, name == "peskin4" ? "Chapter 3" : "Fig. 5.1", r, K::phi(r)}));
+      }
+      props["rows"].push(properties<K>());
+    });
+  results["tables"]["fig51"] = fig;
+  results["tables"]["properties"] = props;
+}
+
+/// The literal sum of eq. 4.4 on N = 16 ... 2048, every kernel.
+Json direct_sums(const std::vector<double>& Xh) {
+  Json direct = st::table({"kernel", "N", "h_um", "err_inf"}, {"", "", "um", ""});
+  std::vector<double> Ud;
+  for (const std::string& name : kernel_names())
+    with_kernel(kernel_named(name), [&](auto kernel) {
+      for (int N : {16, 32, 64, 128, 256, 512, 1024, 2048})
+        direct["rows"].push(st::row({name, N, L / N / units::um, direct_error<decltype(kernel)>(Xh, N, Ud)}));
+    });
+  return direct;
+}
+
+/// The solver's interpolation on each grid and kernel: error, time per call, and its difference to
+/// the literal sum.
+Json solver_interpolation(const st::Options& opt, const std::vector<double>& Xh, const std::vector<int>& grids, int repeats) {
+  const int points = int(Xh.size() / 3);
+  const dvec X(Xh.begin(), Xh.end());
+  Json interp = st::table({"kernel", "N", "h_um", "err_inf", "seconds", "diff_vs_direct"}, {"", "", "um", "", "s", ""});
+  std::vector<double> Ud;
+  for (int N : grids) {
+    const auto boxes = mac_boxes({N, N, N}, {L, L, L}, {true, true, true});
+    std::array<dvec, 3> u;
+    for (int c = 0; c < 3; ++c) u[c] = sample(boxes[c], f);
+    for (const std::string& name : kernel_names()) {
+      Interaction ib(boxes, kernel_named(name));
+      dvec U;
+      ib.interpolate(X, u, U);
+      const double seconds = st::median_seconds(repeats, [&] { ib.interpolate(X, u, U); });
+      const host_vector<double> Uh = U;
+      with_kernel(kernel_named(name), [&](auto kernel) { direct_error<decltype(kernel)>(Xh, N, Ud); });
+      double err = 0, diff = 0;
+      for (int c = 0; c < 3; ++c)
+        for (int p = 0; p < points; ++p) {
+          err = std::max(err, std::abs(Uh[c * points + p] - f(Xh[p], Xh[points + p], Xh[2 * points + p])));
+          diff = std::max(diff, std::abs(Uh[c * points + p] - Ud[c * points + p]));
+        }
+      interp["rows"].push(st::row({name, N, L / N / units::um, err, seconds, diff}));
+      st::log(opt, "3. " + name + ", N = " + to_text(N) + ": err_inf " + to_text(err) + ", " + to_text(seconds * 1e6) +
+                       " us per call, |solver - eq. 4.4 sum| " + to_text(diff));
+    }
+  }
+  return interp;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   return st::run_main("chapter5_kernels", [&] {
+    // ---- 1. Parameters ----------------------------------------------------------------------
     const st::Options opt = st::parse_command_line(argc, argv, "chapter5_kernels",
                                                    "The IB kernels of Fig. 5.1: phi(r), moments, sums of squares, interpolation order and time");
     const bool full = opt.scale == st::Scale::full;
     const std::vector<int> grids = full ? std::vector<int>{16, 32, 64, 128, 256} : std::vector<int>{16, 32, 64, 128};
-    const std::vector<int> direct_grids = {16, 32, 64, 128, 256, 512, 1024, 2048};
     const int points = 1000, repeats = full ? 31 : 11;
-
     Json results = st::make_results(opt);
     Json& P = results["parameters"];
     P["box_um"] = "[0, 16]^3, periodic";
@@ -127,64 +188,17 @@ int main(int argc, char** argv) {
     P["interpolation"] = "ib::Interaction, binned Alg. 4.3, three MAC components";
     P["repeats"] = repeats;
 
-    // ---- 1. Fig. 5.1: phi(r) on [-2.5, 2.5] ------------------------------------------------
-    Json fig = st::table({"kernel", "figure", "r", "phi"}, {"", "", "h", ""});
-    Json props = st::table({"kernel", "support", "partition_err", "first_moment", "sumsq_min", "sumsq_max", "second_moment_min",
-                            "second_moment_max", "phi0", "even_odd_err"},
-                           {"", "h", "", "h", "", "", "h^2", "h^2", "", ""});
-    for (const std::string& name : kernel_names())
-      with_kernel(kernel_named(name), [&](auto kernel) {
-        using K = decltype(kernel);
-        for (int m = 0; m <= 500; ++m) {
-          const double r = (m - 250) / 100.0;
-          fig["rows"].push(Json::Array{Json(K::name), Json(name == "peskin4" ? "Chapter 3" : "Fig. 5.1"), Json(r), Json(K::phi(r))});
-        }
-        // ---- 2. Properties over 1000 offsets ------------------------------------------------
-        props["rows"].push(properties<K>());
-      });
-    results["tables"]["fig51"] = fig;
-    results["tables"]["properties"] = props;
+    // ---- 2. Fig. 5.1 and the kernels' properties ----------------------------------------------
+    kernel_shapes(results);
     st::log(opt, "1-2. phi(r) and the properties of " + to_text(kernel_names().size()) + " kernels");
 
-    // ---- 3. Interpolation at random points --------------------------------------------------
+    // ---- 3. Interpolation at random points: the literal sum and the solver's ----------------
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> U01(0.0, L);
     std::vector<double> Xh(3 * points);
     for (double& x : Xh) x = U01(rng);
-    const dvec X(Xh.begin(), Xh.end());
-    Json interp = st::table({"kernel", "N", "h_um", "err_inf", "seconds", "diff_vs_direct"}, {"", "", "um", "", "s", ""});
-    Json direct = st::table({"kernel", "N", "h_um", "err_inf"}, {"", "", "um", ""});
-    std::vector<double> Ud;
-    for (const std::string& name : kernel_names()) {
-      with_kernel(kernel_named(name), [&](auto kernel) {
-        using K = decltype(kernel);
-        for (int N : direct_grids)
-          direct["rows"].push(Json::Array{Json(name), Json(N), Json(L / N / units::um), Json(direct_error<K>(Xh, N, Ud))});
-      });
-    }
-    for (int N : grids) {
-      const auto boxes = mac_boxes({N, N, N}, {L, L, L}, {true, true, true});
-      std::array<dvec, 3> u;
-      for (int c = 0; c < 3; ++c) u[c] = sample(boxes[c], f);
-      for (const std::string& name : kernel_names()) {
-        Interaction ib(boxes, kernel_named(name));
-        dvec U;
-        ib.interpolate(X, u, U);
-        const double seconds = st::median_seconds(repeats, [&] { ib.interpolate(X, u, U); });
-        const host_vector<double> Uh = U;
-        with_kernel(kernel_named(name), [&](auto kernel) { direct_error<decltype(kernel)>(Xh, N, Ud); });
-        double err = 0, diff = 0;
-        for (int c = 0; c < 3; ++c)
-          for (int p = 0; p < points; ++p) {
-            err = std::max(err, std::abs(Uh[c * points + p] - f(Xh[p], Xh[points + p], Xh[2 * points + p])));
-            diff = std::max(diff, std::abs(Uh[c * points + p] - Ud[c * points + p]));
-          }
-        interp["rows"].push(Json::Array{Json(name), Json(N), Json(L / N / units::um), Json(err), Json(seconds), Json(diff)});
-        st::log(opt, "3. " + name + ", N = " + to_text(N) + ": err_inf " + to_text(err) + ", " + to_text(seconds * 1e6) +
-                         " us per call, |solver - eq. 4.4 sum| " + to_text(diff));
-      }
-    }
-    results["tables"]["interpolation"] = interp;
+    const Json direct = direct_sums(Xh);
+    results["tables"]["interpolation"] = solver_interpolation(opt, Xh, grids, repeats);
     results["tables"]["direct_sum"] = direct;
     st::write_results(opt, results);
     return 0;

@@ -27,6 +27,7 @@
 #include "common/scene_run.hpp"
 #include "common/study.hpp"
 #include "rbfib/core/error.hpp"
+#include "rbfib/core/series.hpp"
 #include "rbfib/core/units.hpp"
 
 #include <cmath>
@@ -34,12 +35,12 @@
 using namespace rbfib;
 namespace st = rbfib::study;
 using st::Json;
+using st::row;
 using st::Vec3;
 
 namespace {
 const double wall_y = 1 * units::um;        // the endothelium's plane
 const double gaps_um[2] = {0.3, 0.5};       // the seed's two platelets
-const double half_thickness = 0.5 * units::um;
 
 struct Setup {
   int cells_x = 0, cells_y = 0;  // grid cells along x (and z) and y
@@ -105,45 +106,87 @@ struct Platelet {
   double tilt_rate = 0, jeffery_rate = 0;  // over the second half, / gdot
   double edge_on_seconds = 0;              // time with the short axis within 45 deg of the flow
   int flips = 0;                           // passes of the tilt through 90 deg + k 180 deg
-  double min_gap = 0;
+  double min_gap = INFINITY;
   // The seed's three numbers (Sec. 5.2); NaN when the window holds no such event.
-  double tumble_frequency = NAN;  // full orbits (2 pi) per s: 1 / (2 x the mean interval between flips)
+  double tumble_frequency = NAN;    // full orbits (2 pi) per s: 1 / (2 x the mean interval between flips)
   double edge_on_per_tumble = NAN;  // s, the mean contiguous edge-on interval (begun and ended in the window)
-  double wobble_frequency = NAN;  // 1/s: 1 / (2 x the mean interval between crossings of the tilt's mean)
+  double wobble_frequency = NAN;    // 1/s: 1 / (2 x the mean interval between crossings of the tilt's mean)
 };
 
-/// Where x(t) sampled at t[i-1], t[i] passes zero, linearly between the two samples.
-double crossing(const std::vector<double>& t, const std::vector<double>& x, std::size_t i) {
-  return t[i - 1] + (t[i] - t[i - 1]) * x[i - 1] / (x[i - 1] - x[i]);
-}
-
-/// Mean interval between successive entries of `times` (NaN for fewer than two).
-double mean_interval(const std::vector<double>& times) {
-  return times.size() < 2 ? NAN : (times.back() - times.front()) / double(times.size() - 1);
-}
-
-/// The wobble's frequency from the tilt after `settle`: the times the tilt crosses its mean there,
-/// a crossing counted once the tilt has moved a quarter of its standard deviation beyond the mean
-/// (so that jitter about the mean is not a wobble); 1 / (2 x their mean interval).
-double wobble_frequency(const std::vector<double>& t, const std::vector<double>& tilt, double settle) {
-  std::vector<double> ts, x;
-  for (std::size_t i = 0; i < t.size(); ++i)
-    if (t[i] >= settle) ts.push_back(t[i]), x.push_back(tilt[i]);
-  if (x.size() < 3) return NAN;
-  double mean = 0, var = 0;
-  for (double v : x) mean += v / double(x.size());
-  for (double& v : x) v -= mean, var += v * v / double(x.size());
-  const double band = std::sqrt(var) / 4;
-  std::vector<double> crossings;
-  int side = 0;             // +1 above mean + band, -1 below mean - band, 0 not yet either
-  double last_zero = NAN;   // the latest passage through the mean
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    if (i > 0 && (x[i - 1] < 0) != (x[i] < 0)) last_zero = crossing(ts, x, i);
-    const int now = x[i] > band ? 1 : (x[i] < -band ? -1 : side);
-    if (side != 0 && now != side && std::isfinite(last_zero)) crossings.push_back(last_zero);
-    side = now;
+/// Platelet c's motion from the samples at times t, beside Jeffery's rigid spheroid from the same
+/// axis (flow z, gradient y, shear gdot); its time series (every 200th of the run) into `series`.
+Platelet analyse(const std::vector<std::vector<double>>& samples, const std::vector<double>& t, int c, double gdot, Json& series) {
+  const std::size_t o = 1 + 8 * std::size_t(c), ns = t.size(), half = ns / 2;
+  Platelet p;
+  std::vector<double> angle;
+  double v0 = NAN;
+  for (const auto& r : samples) {
+    angle.push_back(std::atan(r[o + 5] / r[o + 4]));  // tilt of the short axis from the wall normal (y) toward the flow (z)
+    p.gap.push_back(r[o + 6]), p.height.push_back(r[o + 1]), p.min_gap = std::min(p.min_gap, r[o + 6]);
+    if (!std::isfinite(r[o + 7])) continue;  // not measured in this sample
+    if (!std::isfinite(v0)) {
+      v0 = r[o + 7];
+    } else {
+      const double change = std::abs(r[o + 7] - v0) / v0;
+      p.volume_change = std::isfinite(p.volume_change) ? std::max(p.volume_change, change) : change;
+    }
   }
-  return 1 / (2 * mean_interval(crossings));
+  p.tilt = st::unwrap(angle, pi);
+  const std::vector<double>& r0 = samples.front();
+  std::vector<double> jangle;
+  for (const Vec3& a : st::jeffery_axis(Vec3{r0[o + 3], r0[o + 4], r0[o + 5]}, 0.5 / 1.55, gdot, 2, 1, t)) jangle.push_back(std::atan(a[2] / a[1]));
+  const std::vector<double> jt = st::unwrap(jangle, pi), th(t.begin() + long(half), t.end());
+  // The tilt grows in the sense of the shear: u = gdot y e_z turns the axis from y toward z.
+  p.tilt_rate = st::slope(th, std::vector<double>(p.tilt.begin() + long(half), p.tilt.end())) / gdot;
+  p.jeffery_rate = st::slope(th, std::vector<double>(jt.begin() + long(half), jt.end())) / gdot;
+  // Edge-on: e = |tilt - the nearest k pi| - pi/4 > 0 (the short axis within 45 deg of the flow, the
+  // edge pointing at the wall). A flip: the tilt passes 90 deg + k 180 deg, the middle of an edge-on interval.
+  std::vector<double> e(ns), flip_times, edge_on;
+  for (std::size_t i = 0; i < ns; ++i) e[i] = std::abs(std::remainder(p.tilt[i], pi)) - pi / 4;
+  double entered = NAN;
+  for (std::size_t i = 1; i < ns; ++i) {
+    if (e[i] > 0) p.edge_on_seconds += t[i] - t[i - 1];
+    const double k0 = std::floor(p.tilt[i - 1] / pi - 0.5), k1 = std::floor(p.tilt[i] / pi - 0.5);
+    if (k0 != k1) {
+      ++p.flips;
+      const double at = (std::max(k0, k1) + 0.5) * pi;  // the 90 deg + k 180 deg passed
+      flip_times.push_back(t[i - 1] + (t[i] - t[i - 1]) * (at - p.tilt[i - 1]) / (p.tilt[i] - p.tilt[i - 1]));
+    }
+    if (e[i - 1] <= 0 && e[i] > 0) entered = zero_crossing(t, e, i);
+    if (e[i - 1] > 0 && e[i] <= 0 && std::isfinite(entered)) edge_on.push_back(zero_crossing(t, e, i) - entered), entered = NAN;
+  }
+  // One tumble end over end is a flip (pi); the seed's 30/s counts full orbits (2 pi): conventions.
+  p.tumble_frequency = 1 / (2 * mean_interval(flip_times));
+  if (!edge_on.empty()) {
+    p.edge_on_per_tumble = 0;
+    for (double d : edge_on) p.edge_on_per_tumble += d / double(edge_on.size());
+  }
+  p.wobble_frequency = oscillation_frequency(t, p.tilt, t.front() + 5 * units::ms);  // after the start-up response (a strain of 5)
+  for (std::size_t i = 0; i < ns; i += std::max<std::size_t>(1, ns / 200))
+    series["rows"].push(row({gaps_um[c], t[i] / units::ms, gdot * t[i], p.tilt[i] * 180 / pi, jt[i] * 180 / pi, p.gap[i] / units::um, p.height[i] / units::um}));
+  return p;
+}
+
+/// Platelet c's row of the summary and its values ("near" the wall, or "far").
+void report(const Platelet& p, int c, double span, Json& summary, Json& values, const st::Options& opt) {
+  const double ms = units::ms;
+  summary["rows"].push(row({gaps_um[c], p.min_gap / units::um, p.tilt.back() * 180 / pi, p.tilt_rate, p.jeffery_rate, p.tilt_rate / p.jeffery_rate,
+                            double(p.flips), span > 0 ? p.flips / span : NAN, p.edge_on_seconds / ms, p.tumble_frequency, p.edge_on_per_tumble / ms,
+                            p.wobble_frequency, p.volume_change}));
+  const std::string k = c == 0 ? "near" : "far";
+  values["min_gap_um_" + k] = p.min_gap / units::um;
+  values["rate_over_jeffery_" + k] = p.tilt_rate / p.jeffery_rate;
+  values["volume_change_" + k] = p.volume_change;
+  values["flips_" + k] = double(p.flips);
+  values["edge_on_ms_" + k] = p.edge_on_seconds / ms;
+  values["tumble_frequency_1_s_" + k] = p.tumble_frequency;
+  values["edge_on_ms_per_tumble_" + k] = p.edge_on_per_tumble / ms;
+  values["wobble_frequency_1_s_" + k] = p.wobble_frequency;
+  st::log(opt, "platelet " + to_text(gaps_um[c]) + " um above the wall: min gap " + to_text(p.min_gap / units::um) + " um, tilt " +
+                   to_text(p.tilt.back() * 180 / pi) + " deg, rate " + to_text(p.tilt_rate) + " gdot (Jeffery " + to_text(p.jeffery_rate) +
+                   "), flips " + to_text(p.flips) + ", edge-on " + to_text(p.edge_on_seconds / ms) + " ms (" + to_text(p.edge_on_per_tumble / ms) +
+                   " ms per tumble), tumbles " + to_text(p.tumble_frequency) + " /s, wobble " + to_text(p.wobble_frequency) + " /s, volume change " +
+                   to_text(p.volume_change));
 }
 
 }  // namespace
@@ -156,9 +199,6 @@ int main(int argc, char** argv) {
     const double us = units::us, ms = units::ms, gdot = 1000;
     const Setup s = full ? Setup{80, 60, 900, 128, 50 * units::ns, 100 * ms} : Setup{40, 30, 400, 64, 100 * units::ns, 0.3 * ms};
     const long total = std::lround(s.t_end / s.dt);
-    const double settle = 5 * ms;  // the wobble is read after the start-up response (a strain of 5)
-    const int every = int(std::max(1L, total / 400));
-
     Json results = st::make_results(opt);
     Json& P = results["parameters"];
     P["box_um"] = "16 x 12 x 16, periodic x and z, walls in y, the top one at 12 mm/s along z (shear 1000/s)";
@@ -173,101 +213,16 @@ int main(int argc, char** argv) {
 
     st::SceneRunHooks hooks;
     hooks.sample = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib); };
-    const st::Sitting sitting(opt);  // full scale: a sitting's wall time
-    const st::SceneRun run = st::run_scene(scene_text(s), "platelets", every, full, opt, hooks, sitting.remaining());
+    const st::SceneRun run = st::run_scene(scene_text(s), "platelets", int(std::max(1L, total / 400)), opt.keeps_runs(), opt, hooks, st::Sitting(opt).remaining());
 
-    // ---- Analysis ---------------------------------------------------------------------------
     std::vector<double> t;
-    for (const auto& r : run.samples) t.push_back(r[0]);
-    const std::size_t ns = t.size(), half = ns / 2;
-    Json ts = st::table({"gap_um", "t_ms", "strain", "tilt_deg", "jeffery_tilt_deg", "gap_now_um", "height_um"},
-                        {"um", "ms", "", "deg", "deg", "um", "um"});
-    Json sum = st::table({"gap_um", "min_gap_um", "tilt_end_deg", "tilt_rate_over_gdot", "jeffery_rate_over_gdot", "rate_over_jeffery",
-                          "flips", "flip_frequency_1_s", "edge_on_ms", "tumble_frequency_1_s", "edge_on_ms_per_tumble",
-                          "wobble_frequency_1_s", "volume_change_rel"},
-                         {"um", "um", "deg", "", "", "", "", "1/s", "ms", "1/s", "ms", "1/s", ""});
     double endothelium_max = 0;
-    for (const auto& r : run.samples) endothelium_max = std::max(endothelium_max, r.back());
-    for (int c = 0; c < 2; ++c) {
-      const std::size_t o = 1 + 8 * std::size_t(c);
-      Platelet p;
-      std::vector<double> angle;
-      double v0 = NAN;
-      p.min_gap = INFINITY;
-      for (const auto& r : run.samples) {
-        // Tilt of the short axis from the wall normal (y) toward the flow (z), in (-90, 90] deg.
-        const Vec3 axis{r[o + 3], r[o + 4], r[o + 5]};
-        angle.push_back(std::atan(axis[2] / axis[1]));
-        p.gap.push_back(r[o + 6]);
-        p.height.push_back(r[o + 1]);
-        p.min_gap = std::min(p.min_gap, r[o + 6]);
-        if (!std::isfinite(r[o + 7])) continue;  // not measured in this sample
-        if (!std::isfinite(v0)) {
-          v0 = r[o + 7];
-        } else {
-          const double change = std::abs(r[o + 7] - v0) / v0;
-          p.volume_change = std::isfinite(p.volume_change) ? std::max(p.volume_change, change) : change;
-        }
-      }
-      p.tilt = st::unwrap(angle, pi);
-      // Jeffery's rigid spheroid in unbounded shear from the same axis (flow z, gradient y).
-      const std::vector<double>& r0 = run.samples.front();
-      const std::vector<Vec3> jef = st::jeffery_axis(Vec3{r0[o + 3], r0[o + 4], r0[o + 5]}, 0.5 / 1.55, gdot, 2, 1, t);
-      std::vector<double> jangle;
-      for (const Vec3& a : jef) jangle.push_back(std::atan(a[2] / a[1]));
-      const std::vector<double> jt = st::unwrap(jangle, pi);
-      const std::vector<double> th(t.begin() + long(half), t.end());
-      // The tilt grows in the sense of the shear: u = gdot y e_z turns the axis from y toward z.
-      p.tilt_rate = st::slope(th, std::vector<double>(p.tilt.begin() + long(half), p.tilt.end())) / gdot;
-      p.jeffery_rate = st::slope(th, std::vector<double>(jt.begin() + long(half), jt.end())) / gdot;
-      // Edge-on: e = |tilt - the nearest k pi| - pi/4 > 0 (the short axis within 45 deg of the flow, the
-      // edge pointing at the wall; a continuous function of the tilt). A flip: the tilt passes
-      // 90 deg + k 180 deg, the middle of an edge-on interval.
-      std::vector<double> e(ns), flip_times, edge_on;
-      for (std::size_t i = 0; i < ns; ++i) e[i] = std::abs(std::remainder(p.tilt[i], pi)) - pi / 4;
-      double entered = NAN;
-      for (std::size_t i = 1; i < ns; ++i) {
-        if (e[i] > 0) p.edge_on_seconds += t[i] - t[i - 1];
-        const double k0 = std::floor(p.tilt[i - 1] / pi - 0.5), k1 = std::floor(p.tilt[i] / pi - 0.5);
-        if (k0 != k1) {
-          ++p.flips;
-          const double at = (std::max(k0, k1) + 0.5) * pi;  // the 90 deg + k 180 deg passed
-          flip_times.push_back(t[i - 1] + (t[i] - t[i - 1]) * (at - p.tilt[i - 1]) / (p.tilt[i] - p.tilt[i - 1]));
-        }
-        if (e[i - 1] <= 0 && e[i] > 0) entered = crossing(t, e, i);
-        if (e[i - 1] > 0 && e[i] <= 0 && std::isfinite(entered)) edge_on.push_back(crossing(t, e, i) - entered), entered = NAN;
-      }
-      // One tumble end over end is a flip (pi); the seed's 30/s counts full orbits (2 pi): conventions.
-      p.tumble_frequency = 1 / (2 * mean_interval(flip_times));
-      if (!edge_on.empty()) {
-        p.edge_on_per_tumble = 0;
-        for (double d : edge_on) p.edge_on_per_tumble += d / double(edge_on.size());
-      }
-      p.wobble_frequency = wobble_frequency(t, p.tilt, t.front() + settle);
-      const std::size_t stride = std::max<std::size_t>(1, ns / 200);
-      for (std::size_t i = 0; i < ns; i += stride)
-        ts["rows"].push(Json::Array{Json(gaps_um[c]), Json(t[i] / ms), Json(gdot * t[i]), Json(p.tilt[i] * 180 / pi), Json(jt[i] * 180 / pi),
-                                    Json(p.gap[i] / units::um), Json(p.height[i] / units::um)});
-      const double span = t.back() - t.front();
-      sum["rows"].push(Json::Array{Json(gaps_um[c]), Json(p.min_gap / units::um), Json(p.tilt.back() * 180 / pi), Json(p.tilt_rate),
-                                   Json(p.jeffery_rate), Json(p.tilt_rate / p.jeffery_rate), Json(double(p.flips)),
-                                   Json(span > 0 ? p.flips / span : NAN), Json(p.edge_on_seconds / ms), Json(p.tumble_frequency),
-                                   Json(p.edge_on_per_tumble / ms), Json(p.wobble_frequency), Json(p.volume_change)});
-      const std::string k = c == 0 ? "near" : "far";
-      results["values"]["min_gap_um_" + k] = p.min_gap / units::um;
-      results["values"]["rate_over_jeffery_" + k] = p.tilt_rate / p.jeffery_rate;
-      results["values"]["volume_change_" + k] = p.volume_change;
-      results["values"]["flips_" + k] = double(p.flips);
-      results["values"]["edge_on_ms_" + k] = p.edge_on_seconds / ms;
-      results["values"]["tumble_frequency_1_s_" + k] = p.tumble_frequency;
-      results["values"]["edge_on_ms_per_tumble_" + k] = p.edge_on_per_tumble / ms;
-      results["values"]["wobble_frequency_1_s_" + k] = p.wobble_frequency;
-      st::log(opt, "platelet " + to_text(gaps_um[c]) + " um above the wall: min gap " + to_text(p.min_gap / units::um) + " um, tilt " +
-                       to_text(p.tilt.back() * 180 / pi) + " deg, rate " + to_text(p.tilt_rate) + " gdot (Jeffery " + to_text(p.jeffery_rate) +
-                       "), flips " + to_text(p.flips) + ", edge-on " + to_text(p.edge_on_seconds / ms) + " ms (" + to_text(p.edge_on_per_tumble / ms) +
-                       " ms per tumble), tumbles " + to_text(p.tumble_frequency) + " /s, wobble " + to_text(p.wobble_frequency) + " /s, volume change " +
-                       to_text(p.volume_change));
-    }
+    for (const auto& r : run.samples) t.push_back(r[0]), endothelium_max = std::max(endothelium_max, r.back());
+    Json ts = st::table({"gap_um", "t_ms", "strain", "tilt_deg", "jeffery_tilt_deg", "gap_now_um", "height_um"}, {"um", "ms", "", "deg", "deg", "um", "um"});
+    Json sum = st::table({"gap_um", "min_gap_um", "tilt_end_deg", "tilt_rate_over_gdot", "jeffery_rate_over_gdot", "rate_over_jeffery", "flips",
+                          "flip_frequency_1_s", "edge_on_ms", "tumble_frequency_1_s", "edge_on_ms_per_tumble", "wobble_frequency_1_s", "volume_change_rel"},
+                         {"um", "um", "deg", "", "", "", "", "1/s", "ms", "1/s", "ms", "1/s", ""});
+    for (int c = 0; c < 2; ++c) report(analyse(run.samples, t, c, gdot, ts), c, t.back() - t.front(), sum, results["values"], opt);
     results["values"]["endothelium_displacement_um"] = endothelium_max / units::um;
     results["values"]["completed"] = run.stopped.empty() ? 1.0 : 0.0;
     st::record_run(results, "platelets", run.progress(s.t_end));
@@ -276,10 +231,9 @@ int main(int argc, char** argv) {
     // The cost: time per step and the time to the seed's 100 ms at the seed's step.
     Json cost = st::table({"h_um", "dt_us", "steps", "seconds", "seconds_per_step", "steps_to_100ms", "hours_to_100ms", "hours_to_go"},
                           {"um", "us", "", "s", "s", "", "h", "h"});
-    const double steps_100 = std::round(100 * ms / s.dt);
-    cost["rows"].push(Json::Array{Json(16.0 / s.cells_x), Json(s.dt / us), Json(double(run.steps)), Json(run.seconds), Json(run.seconds_per_step()),
-                                  Json(steps_100), Json(steps_100 * run.seconds_per_step() / 3600),
-                                  Json(double(total - run.steps) * run.seconds_per_step() / 3600)});
+    const double steps_100 = std::round(100 * ms / s.dt), sps = run.seconds_per_step();
+    cost["rows"].push(row({16.0 / s.cells_x, s.dt / us, double(run.steps), run.seconds, sps, steps_100, steps_100 * sps / 3600,
+                           double(total - run.steps) * sps / 3600}));
     results["tables"]["cost"] = cost;
     st::write_results(opt, results);
     return 0;

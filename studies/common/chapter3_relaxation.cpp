@@ -4,105 +4,20 @@
 #include "rbfib/cells/shapes.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/fluid/periodic_stokes.hpp"
-#include "rbfib/ib/interaction.hpp"
+#include "rbfib/mechanics/net_force.hpp"
 #include "rbfib/run/run.hpp"
-#include "rbfib/sim/ib_step.hpp"
-#include "rbfib/linalg/blas.hpp"
-#include "rbfib/mechanics/ldsm.hpp"
 #include "rbfib/surface/geometry.hpp"
 #include "rbfib/surface/operators.hpp"
-#include "rbfib/surface/quadrature.hpp"
+#include "rbfib/surface/radial_extent.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <map>
-#include <memory>
+#include <filesystem>
 #include <optional>
 
 namespace rbfib::chapter3 {
 
-namespace {
-
-
-/// The periodic MAC grid on [-L, L]^3 with eta cells per side.
-MacGrid periodic_grid(int eta, double L) {
-  require(eta >= 4, "grid size eta", eta, "must be >= 4");
-  MacGrid g = make_mac_grid(3, {eta, eta, eta}, {2 * L, 2 * L, 2 * L},
-                            {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
-  g.origin = {-L, -L, -L};
-  return g;
-}
-
-/// The coupled step of Sec. 3.3: steady Stokes (alpha = 0, the exact inverse of the MAC operators),
-/// Chapter 3's forward Euler (eq. 87), the run's kernel, no stopping condition (the paper has none).
-sim::ImmersedBoundary chapter3_step(int eta, double L, double mu, double dt, ib::Kernel kernel) {
-  sim::IbOptions o;
-  o.coupling = sim::Coupling::forward_euler;
-  o.kernel = kernel;
-  o.stopping_condition = false;
-  return sim::ImmersedBoundary(std::make_unique<PeriodicStokesStep>(periodic_grid(eta, L), FluidParameters{1.0, mu}, dt, true), o);
-}
-
-/// The diagnostics of the header from the evaluation sites' positions Xs (n x 3), the x coordinate
-/// x_axis of the material point (0, 0), and the centroid c.
-Sample sample(double t, const std::vector<double>& Xs, double x_axis, const double c[3], double volume, double axis0) {
-  const std::size_t n = Xs.size() / 3;
-  Sample s{t, 0, 0, 0, volume};
-  double rmax = 0, rmin = INFINITY;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double dx = Xs[i] - c[0], dy = Xs[n + i] - c[1], dz = Xs[2 * n + i] - c[2];
-    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-    rmax = std::max(rmax, r);
-    rmin = std::min(rmin, r);
-  }
-  s.r_max = rmax - 1;  // minus the reference radius (Fig. 4 caption)
-  s.r_min = rmin - 1;
-  s.d_axis = (x_axis - c[0]) - axis0;
-  return s;
-}
-
-/// Per-step times of each phase, and their medians.
-struct PhaseLog {
-  std::vector<double> forces, products, spread, solve, interpolate, update;
-  static double median(std::vector<double> v) {
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    const std::size_t h = v.size() / 2;
-    return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
-  }
-  PhaseTimes medians() const {
-    PhaseTimes p;
-    p.forces = median(forces);
-    p.force_products = median(products);
-    p.spread = median(spread);
-    p.solve = median(solve);
-    p.interpolate = median(interpolate);
-    p.update = median(update);
-    return p;
-  }
-};
-
-double max_abs(const std::vector<double>& v) {
-  double m = 0;
-  for (double x : v) m = std::max(m, std::abs(x));
-  return m;
-}
-
-/// |sum_i F^_i|_inf (F n x 3 column-major).
-double force_integral(const std::vector<double>& F) {
-  const std::size_t n = F.size() / 3;
-  double s[3] = {0, 0, 0};
-  for (std::size_t i = 0; i < F.size(); ++i) s[i / n] += F[i];
-  return std::max({std::abs(s[0]), std::abs(s[1]), std::abs(s[2])});
-}
-
-}  // namespace
+namespace st = rbfib::study;
 
 const char* to_string(Method m) { return m == Method::shvd ? "SHVD" : "LDSM"; }
-
-std::vector<mechanics::EnergyDensity> total_energy(double Gs, double A, double sigma) {
-  return {mechanics::EnergyDensity::neo_hookean_paper(Gs, A), mechanics::EnergyDensity::surface_tension(sigma)};
-}
 
 const surface::SphereSites& interpolation_sites(int M) {
   static std::map<int, surface::SphereSites> cache;
@@ -111,22 +26,70 @@ const surface::SphereSites& interpolation_sites(int M) {
   return it->second;
 }
 
+std::string RelaxationSpec::label(const std::string& tag) const {
+  const std::string kind = shape_name + (md_degree >= 0 ? "_MD" : "") +
+                           (point == Point::rightmost ? "_rightmost" : point == Point::axis_site ? "_driver_loop" : "") + tag;
+  return std::string(to_string(method)) + "_" + kind + "_eta" + to_text(eta) + "_n" + to_text(n) +
+         (method == Method::shvd ? "_M" + to_text(M) : std::string()) + "_dt1over" + to_text(std::lround(1 / dt)) +
+         "_steps" + to_text(steps) + "_every" + to_text(record_every);
+}
+
+RelaxationSpec dynamic_test(Method method, int eta, double t, int M, int records) {
+  RelaxationSpec s;
+  s.method = method;
+  s.shape = surface::ellipsoid(1.2, 1 / std::sqrt(1.2), 1 / std::sqrt(1.2));
+  s.eta = eta;
+  s.dt = 1.0 / (2 * eta);
+  s.steps = int(std::lround(t / s.dt));
+  s.M = M;
+  s.record_every = records > 0 ? std::max(1, s.steps / records) : 0;
+  s.n = spiral_sites(eta);
+  return s;
+}
+
+void describe_dynamic_test(st::Json& P) {
+  P["units"] = "dimensionless (mu = 1, moduli 1, reference the unit sphere), as the paper's Sec. 4";
+  P["box"] = "[-2, 2]^3, periodic; steady Stokes (alpha = 0), exact inverse of the MAC operators (Sec. 3.2)";
+  P["mu"] = 1.0;
+  P["moduli"] =
+      "neo-Hookean (eq. 68) Gs = 1, A = 1; surface tension (eq. 72) sigma = 1; total force their sum (Sec. 4.2)";
+  P["kernel"] = "peskin4 (Peskin's 4-point function, the paper's [25])";
+  P["time_update"] =
+      "Sec. 3.3: forces at X^k, spread, Stokes solve, interpolate, X^{k+1} = X^k + dt U^{k+1} (eq. 87)";
+  P["ellipsoid"] = "eq. (88), a = 1.2, b = c = 1/sqrt(1.2)";
+  P["evaluation_sites"] =
+      "Bauer spiral (diss. eq. 5.1), n = 2 eta^2 + 1 (Fig. 4 full: 8281), weights diss. eq. (2.22) with "
+      "phi = r^3; for comparison the stored MD sets with eq. (45) weights (table sites)";
+  P["interpolation_sites"] = "(M+1)^2 maximal-determinant-like sites, M = 7 (m = 64) or 14 (m = 225)";
+}
+
 struct Relaxation::Impl {
   RelaxationSpec spec;
-  const EvaluationSet& eval;
-  std::vector<mechanics::EnergyDensity> energies;
+  EvaluationSet eval;
+  index_t measure_site = -1;  // SHVD: d_max at this evaluation site instead of at its interpolant
   std::shared_ptr<const surface::SurfaceOperators> axis_ops;  // SHVD: the interpolant at (0, 0)
   cells::CellGeometry geometry;
   std::optional<run::Run> loop;
 
-  Impl(const RelaxationSpec& s, const EvaluationSet& e, const std::string& checkpoint, const std::string& label, double sitting)
-      : spec(s), eval(e), energies(total_energy(s.Gs, s.A, s.sigma)) {
+  Impl(const RelaxationSpec& s, const EvaluationSet& e, const std::string& checkpoint, const std::string& label,
+       double sitting)
+      : spec(s), eval(e) {
     require(spec.steps >= 1, "steps", spec.steps, "must be >= 1");
-    require(spec.measure_site < index_t(eval.size()), "measure_site", spec.measure_site, "must be a site of the evaluation set");
-    sim::ImmersedBoundary ib = chapter3_step(spec.eta, spec.L, spec.mu, spec.dt, spec.kernel);
+    require(spec.eta >= 4, "grid size eta", spec.eta, "must be >= 4");
+    if (spec.point == Point::rightmost) eval.axis_site = surface::rightmost_site(eval.sites);
+    if (spec.method == Method::shvd && spec.point != Point::material) measure_site = eval.axis_site;
+    // The coupled step of Sec. 3.3: steady Stokes on the periodic MAC grid, forward Euler (eq. 87).
+    MacGrid grid = make_mac_grid(3, {spec.eta, spec.eta, spec.eta}, {2 * spec.L, 2 * spec.L, 2 * spec.L},
+                                 {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
+    grid.origin = {-spec.L, -spec.L, -spec.L};
+    sim::IbOptions o;
+    o.coupling = sim::Coupling::forward_euler;
+    o.kernel = spec.kernel;
+    o.stopping_condition = false;
+    sim::ImmersedBoundary ib(std::make_unique<PeriodicStokesStep>(grid, FluidParameters{1.0, spec.mu}, spec.dt, true), o);
+    const std::vector<mechanics::EnergyDensity> energies = {mechanics::EnergyDensity::neo_hookean_paper(spec.Gs, spec.A),
+                                                            mechanics::EnergyDensity::surface_tension(spec.sigma)};
     if (spec.method == Method::shvd) {
-      // The cell type: unit-sphere reference, the degree-M interpolant through the m sites (LU of
-      // Y once), the n evaluation sites with their weights, the total energy of Sec. 4.2.
       cells::CellTypeSpec ts;
       ts.name = "SHVD m = " + to_text((spec.M + 1) * (spec.M + 1));
       ts.shape = cells::ellipsoid_shape(1, 1, 1);
@@ -147,46 +110,37 @@ struct Relaxation::Impl {
     } else {
       ib.add(sim::LdsmShell{"LDSM", eval.tris, eval.Z, spec.shape.points(eval.sites), energies});
     }
-    run::Options o;
-    o.t_end = spec.steps * spec.dt;
-    o.checkpoint = checkpoint;
-    o.sitting = sitting;
-    o.label = label;
-    o.sample_every = run::Cadence{};  // the hook records at its own steps
+    run::Options ro;
+    ro.t_end = spec.steps * spec.dt;
+    ro.checkpoint = checkpoint;
+    ro.sitting = sitting;
+    ro.label = label;
+    ro.sample_every = run::Cadence{};  // the hook records at its own steps
     run::Hooks h;
     h.after_step = [this](const sim::ImmersedBoundary& ib, const sim::IbStepReport* r, run::SeriesSet& series) {
-      after_step(ib, r, series);
+      const long k = ib.step_count();
+      if (r) {
+        run::append_phases(series["phases"], *r);
+        if (k == 1) {  // the forces of the first step act at X^0
+          const std::vector<double> F0 =
+              spec.method == Method::shvd ? ib.batch_set(0).forces().force.to_host() : ib.shell(0).force();
+          series["start"].rows.at(0).push_back(mechanics::net_force_inf(F0));
+          series["start"].rows.at(0).push_back(mechanics::max_force_inf(F0));
+        }
+      }
+      if (k == 0 || k == spec.steps || (spec.record_every > 0 && k % spec.record_every == 0)) record(ib, k, series);
     };
-    loop.emplace(describe(), std::move(ib), o, std::move(h));
+    loop.emplace(describe(), std::move(ib), ro, std::move(h));
   }
 
   /// The run as text (what its checkpoint must match).
   std::string describe() const {
     std::string d = std::string("chapter3 relaxation ") + to_string(spec.method) + "\n";
-    for (double x : {spec.shape.a, spec.shape.b, spec.shape.c, spec.shape.B, spec.shape.Vf, double(spec.eta), spec.L, spec.mu,
-                     spec.dt, double(spec.steps), double(spec.record_every), double(spec.M), spec.Gs, spec.A, spec.sigma,
-                     double(int(spec.kernel)), double(spec.measure_site)})
+    for (double x : {spec.shape.a, spec.shape.b, spec.shape.c, spec.shape.B, spec.shape.Vf, double(spec.eta), spec.L,
+                     spec.mu, spec.dt, double(spec.steps), double(spec.record_every), double(spec.M), spec.Gs, spec.A,
+                     spec.sigma, double(int(spec.kernel)), double(measure_site)})
       d += to_text(x) + "\n";
     return d + eval.family + " " + to_text(eval.size()) + " axis site " + to_text(eval.axis_site) + "\n";
-  }
-
-  bool record_now(long k) const { return k == 0 || k == spec.steps || (spec.record_every > 0 && k % spec.record_every == 0); }
-
-  void after_step(const sim::ImmersedBoundary& ib, const sim::IbStepReport* r, run::SeriesSet& series) {
-    const long k = ib.step_count();
-    if (r) {
-      series["phases"].columns = {"forces (s)", "products (s)", "spread (s)", "solve (s)", "interpolate (s)", "update (s)"};
-      series["phases"].rows.push_back({r->seconds_forces, r->seconds_force_products, r->seconds_spreading, r->seconds_fluid,
-                                       r->seconds_interpolation, r->seconds_update});
-      if (k == 1) {  // the forces of the first step act at X^0
-        const std::vector<double> F0 =
-            spec.method == Method::shvd ? ib.batch_set(0).forces().force.to_host() : ib.shell(0).force();
-        std::vector<double>& start = series["start"].rows.at(0);
-        start.push_back(force_integral(F0));
-        start.push_back(max_abs(F0));
-      }
-    }
-    if (record_now(k)) record(ib, k, series);
   }
 
   /// The diagnostics of the header at X^k.
@@ -199,24 +153,23 @@ struct Relaxation::Impl {
       for (int d = 0; d < 3; ++d) c[d] = geometry.cells.centroid[0][d];
       volume = geometry.cells.volume[0];
       Xs = geometry.positions.to_host();
-      // the material point (0, 0) on the interpolant (an evaluation site of the spirals), or the
-      // evaluation site asked for
-      x_axis = spec.measure_site >= 0 ? Xs.at(std::size_t(spec.measure_site))
-                                      : surface::jets_from_operators(*axis_ops, batch.positions_host())[0].x[0];
+      x_axis = measure_site >= 0 ? Xs.at(std::size_t(measure_site))
+                                 : surface::jets_from_operators(*axis_ops, batch.positions_host())[0].x[0];
     } else {
       Xs = ib.shell(0).shell().X;
       const surface::PolyhedronMeasures pm = surface::polyhedron_measures(eval.tris, Xs);
       volume = pm.volume;
       for (int d = 0; d < 3; ++d) c[d] = pm.centroid[d];
-      if (eval.axis_site >= 0)  // the material point (0, 0) on the piecewise-linear surface
+      if (eval.axis_site >= 0)
         x_axis = Xs[eval.axis_site];
       else
         for (int v = 0; v < 3; ++v) x_axis += eval.axis_weights[v] * Xs[eval.axis_triangle[v]];
     }
     if (k == 0) series["start"] = run::Series{{"axis0"}, {{x_axis - c[0]}}};
-    const Sample s = sample(k * spec.dt, Xs, x_axis, c, volume, series.at("start").rows.at(0).at(0));
+    const surface::RadialExtent r = surface::radial_extent(Xs, c);
     series["samples"].columns = {"t", "d_axis", "r_max", "r_min", "volume"};
-    series["samples"].rows.push_back({s.t, s.d_axis, s.r_max, s.r_min, s.volume});
+    series["samples"].rows.push_back(
+        {k * spec.dt, (x_axis - c[0]) - series.at("start").rows.at(0).at(0), r.max - 1, r.min - 1, volume});
   }
 };
 
@@ -230,17 +183,9 @@ bool Relaxation::advance() { return !impl_->loop->evolve(1).ended(); }
 bool Relaxation::advance_all() { return impl_->loop->evolve().ended(); }
 
 void Relaxation::mark_block() {
-  // phases.total(): the wall time of the steps so far, summed from the series "phases".
-  run::SeriesSet& s = impl_->loop->series();
-  PhaseTimes p;
-  for (const std::vector<double>& q : s["phases"].rows) {  // q[1], the products, is part of q[0]
-    p.forces += q[0];
-    p.spread += q[2];
-    p.solve += q[3];
-    p.interpolate += q[4];
-    p.update += q[5];
-  }
-  s["blocks"].rows.push_back({p.total()});
+  run::Run& loop = *impl_->loop;
+  loop.series()["blocks"].rows.push_back({run::phase_sums(loop.series()["phases"]).total()});
+  if (loop.progress().ended()) loop.checkpoint();  // the run's last block, after its finishing checkpoint
 }
 
 int Relaxation::step() const { return int(impl_->loop->ib().step_count()); }
@@ -254,57 +199,153 @@ RelaxationResult Relaxation::result() const {
   r.continued = loop.continued();
   r.failed = p.status == run::RunStatus::stopped;
   if (r.failed)
-    r.failure = std::string(to_string(impl_->spec.method)) + " at step " + to_text(p.clock.step) + " (t = " + to_text(p.clock.t) + "): " +
-                p.stop_message;
+    r.failure = std::string(to_string(impl_->spec.method)) + " at step " + to_text(p.clock.step) +
+                " (t = " + to_text(p.clock.t) + "): " + p.stop_message;
   r.label = loop.label();
   r.seconds = p.wall_seconds;
   const run::SeriesSet& s = loop.series();
   if (auto it = s.find("samples"); it != s.end())
     for (const std::vector<double>& q : it->second.rows) r.series.push_back(Sample{q[0], q[1], q[2], q[3], q[4]});
-  r.force_integral0 = r.max_force0 = NAN;
   if (auto it = s.find("start"); it != s.end() && it->second.rows.at(0).size() == 3) {
     r.force_integral0 = it->second.rows[0][1];
     r.max_force0 = it->second.rows[0][2];
   }
-  PhaseLog per_step;
-  if (auto it = s.find("phases"); it != s.end())
-    for (const std::vector<double>& q : it->second.rows) {
-      r.phases.forces += q[0];
-      r.phases.force_products += q[1];
-      r.phases.spread += q[2];
-      r.phases.solve += q[3];
-      r.phases.interpolate += q[4];
-      r.phases.update += q[5];
-      per_step.forces.push_back(q[0]);
-      per_step.products.push_back(q[1]);
-      per_step.spread.push_back(q[2]);
-      per_step.solve.push_back(q[3]);
-      per_step.interpolate.push_back(q[4]);
-      per_step.update.push_back(q[5]);
-    }
-  r.median = per_step.medians();
+  if (auto it = s.find("phases"); it != s.end()) {
+    r.phases = run::phase_sums(it->second);
+    r.median = run::phase_medians(it->second);
+  }
   if (auto it = s.find("blocks"); it != s.end())
     for (const std::vector<double>& q : it->second.rows) r.block_ends.push_back(q.at(0));
   return r;
 }
 
-RelaxationResult relax(const RelaxationSpec& spec, const EvaluationSet& eval, const std::string& checkpoint,
-                       const std::string& label, double sitting) {
-  Relaxation run(spec, eval, checkpoint, label, sitting);
-  run.advance_all();
-  return run.result();
+Relaxations::Relaxations(const st::Options& opt) : opt_(opt), keep_(opt.keeps_runs()), sitting_(opt) {}
+
+const EvaluationSet& Relaxations::sites(index_t n) {
+  auto it = sets_.find(n);
+  if (it == sets_.end()) {
+    it = sets_.emplace(n, make_evaluation_set(n)).first;
+    st::log(opt_, "evaluation set n = " + to_text(n) + ": weights and triangulation in " +
+                      to_text(it->second.seconds) + " s");
+  }
+  return it->second;
 }
 
-std::vector<RelaxationResult> relax_lockstep(const std::vector<std::pair<RelaxationSpec, const EvaluationSet*>>& runs) {
-  std::vector<std::unique_ptr<Relaxation>> rs;
-  for (const auto& [spec, eval] : runs) rs.push_back(std::make_unique<Relaxation>(spec, *eval));
-  for (bool any = true; any;) {
-    any = false;
-    for (auto& r : rs) any = r->advance() || any;
+std::string Relaxations::md_file(int N) const {
+  return st::source_path(opt_, "reference/point_sets/max_determinant_N" + to_text(N) + ".txt");
+}
+
+const EvaluationSet& Relaxations::md_sites(int N) {
+  auto it = md_sets_.find(N);
+  if (it == md_sets_.end()) {
+    it = md_sets_.emplace(N, make_md_evaluation_set(md_file(N), N)).first;
+    st::log(opt_, "MD evaluation set N = " + to_text(N) + ": eq. (45) weights and triangulation in " +
+                      to_text(it->second.seconds) + " s");
   }
-  std::vector<RelaxationResult> out;
-  for (auto& r : rs) out.push_back(r->result());
+  return it->second;
+}
+
+const EvaluationSet& Relaxations::sites_of(const RelaxationSpec& s) {
+  return s.md_degree < 0 ? sites(s.n) : md_sites(s.md_degree);
+}
+
+std::string Relaxations::path(const std::string& label) const {
+  return keep_ ? opt_.out_dir + "/run_" + label + ".h5" : std::string();
+}
+
+const RelaxationResult& Relaxations::get(const RelaxationSpec& s) {
+  const std::string key = s.label();
+  auto it = done_.find(key);
+  if (it == done_.end()) {
+    Relaxation run(s, sites_of(s), path(key), st::source_commit(opt_), sitting_.remaining());
+    run.advance_all();
+    RelaxationResult r = run.result();
+    if (r.continued && r.finished && r.steps == s.steps)
+      st::log(opt_, key + ": taken from " + path(key) + " (begun by " + r.label + ")");
+    else if (r.finished)
+      finished(key, r);
+    it = done_.emplace(key, std::move(r)).first;
+  }
+  count(key, s, &it->second);
+  return it->second.finished ? it->second : skipped_;
+}
+
+std::vector<const RelaxationResult*> Relaxations::lockstep(const std::vector<RelaxationSpec>& specs, int blocks) {
+  std::vector<std::string> keys;
+  std::vector<RelaxationResult> rs(specs.size());
+  bool all = true;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    keys.push_back(specs[i].label("_lockstep"));
+    if (done_.count(keys[i])) continue;
+    if (keep_ && std::filesystem::exists(path(keys[i])))
+      rs[i] = Relaxation(specs[i], sites_of(specs[i]), path(keys[i])).result();
+    all = all && rs[i].finished;
+  }
+  if (!all && sitting_.remaining() <= 0) {
+    for (std::size_t i = 0; i < specs.size(); ++i) count(keys[i], specs[i], nullptr);
+    return std::vector<const RelaxationResult*>(specs.size(), &skipped_);
+  }
+  if (!all) {
+    std::vector<std::unique_ptr<Relaxation>> runs;
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      if (keep_) std::filesystem::remove(path(keys[i]));  // all again, together
+      runs.push_back(std::make_unique<Relaxation>(specs[i], sites_of(specs[i]), path(keys[i]), st::source_commit(opt_)));
+    }
+    const int steps = specs.front().steps, every = std::max(1, steps / blocks);
+    int last = 0;
+    for (bool any = true; any;) {
+      any = false;
+      for (auto& r : runs) any = r->advance() || any;
+      const int k = runs.front()->step();
+      if (k != last && (k % every == 0 || k == steps)) {
+        for (auto& r : runs) r->mark_block();
+        last = k;
+      }
+    }
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      rs[i] = runs[i]->result();
+      done_.erase(keys[i]);
+      finished(keys[i], rs[i]);
+    }
+  }
+  std::vector<const RelaxationResult*> out;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    auto it = done_.find(keys[i]);
+    if (it == done_.end()) it = done_.emplace(keys[i], std::move(rs[i])).first;
+    count(keys[i], specs[i], &it->second);
+    out.push_back(&it->second);
+  }
   return out;
+}
+
+void Relaxations::count(const std::string& key, const RelaxationSpec& s, const RelaxationResult* r) {
+  if (!counted_.insert(group_ + " " + key).second) return;
+  Group& g = groups_[group_];
+  g.t_end += s.steps * s.dt;
+  if (!r || !r->finished) g.finished = false;
+  if (!r) return;
+  g.t += r->steps * s.dt;
+  g.steps += r->steps;
+  g.seconds += r->seconds;
+  if (r->failed && g.stopped.empty()) g.stopped = r->failure;
+}
+
+void Relaxations::finished(const std::string& label, const RelaxationResult& r) const {
+  st::log(opt_, label + ": " + to_text(r.steps) + " steps in " + to_text(r.seconds) + " s, d_axis " +
+                    to_text(r.d_axis()) + (r.failed ? " FAILED: " + r.failure : std::string()));
+}
+
+void Relaxations::record(st::Json& results) const {
+  for (const auto& [id, g] : groups_) {
+    st::RunProgress p;
+    p.finished = g.finished;
+    p.t = g.t;
+    p.t_end = g.t_end;
+    p.steps = g.steps;
+    p.seconds_per_step = g.steps > 0 ? g.seconds / double(g.steps) : NAN;
+    p.stopped = g.stopped;
+    st::record_run(results, id, p);
+  }
 }
 
 }  // namespace rbfib::chapter3

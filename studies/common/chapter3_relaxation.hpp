@@ -1,46 +1,29 @@
 #pragma once
-// The Chapter 3 studies' shared part (chapter3_dynamics, chapter3_capillary).
+// Chapter 3's dynamic test (the JCP 2018 paper, Sec. 4.2): one elastic shell relaxing in steady
+// Stokes flow on the periodic box [-L, L]^3 with the time update of Sec. 3.3 (the library's
+// coupled step with the forward-Euler coupling, eq. 87, over the periodic Stokes solver of Sec.
+// 3.2, Peskin's 4-point kernel), stepped by the library's run loop. Forces: neo-Hookean (eq. 68)
+// plus surface tension (eq. 72), reference the unit sphere, everything dimensionless (mu = 1,
+// moduli 1) in the library's CGS slots as plain numbers. Two force methods:
+//   SHVD: the m interpolation sites carry the state; the degree-M interpolant through them (eq.
+//         86) gives the force density of eq. (35) at the n evaluation sites, spread from there;
+//         the velocity is interpolated at the m sites;
+//   LDSM: the n triangulated evaluation sites carry the state, forces of eq. (66).
 //
-// The time update of the paper's Sec. 3.3 on the periodic Stokes solver of Sec. 3.2, for one
-// elastic shell relaxing in [-L, L]^3 (the dynamic test of Sec. 4.2), with either force method:
-//
-//   SHVD: m interpolation sites carry the state. Each step (Sec. 3.3, steps 1-6):
-//         1.-2. the spherical-harmonic interpolant of degree M through the m sites (eq. 86, LU
-//               factored once) gives the jets at the n evaluation sites and the force density of
-//               eq. (35) there, times the area weights dA0 (one force call, cells/batch.hpp);
-//         3.    spread from the n evaluation sites (the forces F^ = F dA0, eq. 52);
-//         4.    steady Stokes solve (alpha = 0: the exact inverse of the MAC operators);
-//         5.    interpolate the velocity at the m interpolation sites;
-//         6.    X^{k+1} = X^k + dt U^{k+1} at the m sites (eq. 87).
-//   LDSM: the n triangulated evaluation sites carry the state: forces of eq. (66) on the
-//         triangles (every energy in one pass), spread from the n sites, Stokes solve, velocity
-//         interpolated at the same n sites (the sort of the spreading reused), eq. (87) at the n.
-//
-// Forces: neo-Hookean (paper eq. 68, Gs, A) plus surface tension (eq. 72, sigma), reference the
-// unit sphere. Kernel: Peskin's 4-point function ("peskin4"), the paper's [25] (Sec. 3.3 step 3:
-// "a 4 point discrete delta function", Peskin's Acta Numerica review, which is also the paper's
-// source for the zero force integral of Sec. 2.4.1). Everything is dimensionless (mu = 1,
-// moduli 1, the unit sphere), in the library's CGS slots as plain numbers.
-//
-// Diagnostics at each recorded time (from the evaluation sites' positions of that step):
-//   d_axis  = (x_a - c_x)(t) - (x_a - c_x)(0): the x-displacement relative to the centroid c of
-//             the material point (lambda, theta) = (0, 0), the rightmost point of the ellipsoid
-//             (d_max of Fig. 5 at t = 3): SHVD evaluates its interpolant there; LDSM takes the site
-//             there (the spirals have one) or its flat triangle's point on that ray (MD sets);
-//   r_max - 1, r_min - 1: max / min over the evaluation sites of |X_i - c| minus the reference
-//             radius 1 (Fig. 4);
-//   c: the centroid of the enclosed volume (SHVD: the force call's quadrature; LDSM: the
-//      triangulated polyhedron).
-#include "rbfib/core/exec.hpp"
+// Diagnostics at each recorded time, from the evaluation sites' positions:
+//   d_axis  = (x_a - c_x)(t) - (x_a - c_x)(0), x_a the x coordinate of the point where d_max is
+//             read (Point) and c the centroid of the enclosed volume (SHVD: the force call's
+//             quadrature; LDSM: the triangulated polyhedron): d_max of Fig. 5 at t = 3;
+//   r_max - 1, r_min - 1: the radial extent about c minus the reference radius 1 (Fig. 4).
+#include "common/study.hpp"
 #include "rbfib/ib/kernels.hpp"
-#include "rbfib/mechanics/energy.hpp"
+#include "rbfib/run/phase_times.hpp"
 #include "rbfib/surface/evaluation_sets.hpp"
-#include "rbfib/surface/point_sets.hpp"
 #include "rbfib/surface/shapes.hpp"
-#include "rbfib/surface/triangulation.hpp"
 
-#include <functional>
+#include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -53,16 +36,25 @@ const char* to_string(Method m);
 using surface::EvaluationSet;
 using surface::make_evaluation_set;
 using surface::make_md_evaluation_set;
-using surface::rightmost_site;
 
-/// The total energy of Sec. 4.2: neo-Hookean (eq. 68) plus surface tension (eq. 72).
-std::vector<mechanics::EnergyDensity> total_energy(double Gs, double A, double sigma);
+/// The interpolation sites of SHVD for degree M (maximal-determinant-like, built once per M).
+const surface::SphereSites& interpolation_sites(int M);
+
+/// Where d_max is read.
+enum class Point {
+  material,   ///< the material point (0, 0): SHVD's interpolant there; LDSM's site there, or the
+              ///< point of its flat triangle on the ray of (1, 0, 0)
+  rightmost,  ///< the rightmost evaluation site at t = 0 (the paper's reading, Sec. 4.2)
+  axis_site,  ///< the set's axis site, read as a site by both methods (on the odd spirals the
+              ///< material point itself: the same run as `material`, measured another way)
+};
 
 struct RelaxationSpec {
   Method method = Method::shvd;
   surface::PerturbedEllipsoid shape;  ///< the initial surface (eq. 88 with B = 0, or eq. 89)
-  int eta = 32;                       ///< grid cells per side
-  double L = 2;                       ///< box [-L, L]^3
+  std::string shape_name = "ellipsoid";
+  int eta = 32;  ///< grid cells per side
+  double L = 2;  ///< box [-L, L]^3
   double mu = 1;
   double dt = 1.0 / 64;
   int steps = 0;         ///< steps to take (t_end = steps dt)
@@ -70,21 +62,27 @@ struct RelaxationSpec {
   int M = 7;             ///< SHVD: harmonic degree, m = (M+1)^2 interpolation sites
   double Gs = 1, A = 1, sigma = 1;
   ib::Kernel kernel = ib::Kernel::peskin4;
-  /// SHVD: measure d_axis at this evaluation site (e.g. the paper's rightmost site) instead of at
-  /// the interpolant's material point (0, 0); -1: the material point.
-  index_t measure_site = -1;
+  index_t n = 0;       ///< evaluation sites: a Bauer spiral of n sites, or
+  int md_degree = -1;  ///< the stored MD set of this degree (then n = (N+1)^2)
+  Point point = Point::material;
+  /// The run's name (its checkpoint's file name); `tag` marks runs of another kind (lockstep).
+  std::string label(const std::string& tag = "") const;
 };
+
+/// Sec. 4.2's run of `method` from the ellipsoid of eq. (88) (a = 1.2, b = c = 1/sqrt(1.2)) on the
+/// grid eta: dt = 1/(2 eta), n = 2 eta^2 + 1 spiral sites (odd: a site at the material point
+/// (0, 0)), to time t, degree M, about `records` records (0: first and last only).
+RelaxationSpec dynamic_test(Method method, int eta, double t, int M, int records);
+inline index_t spiral_sites(int eta) { return index_t(2) * eta * eta + 1; }
+
+/// The parameters both Sec. 4.2 studies share (units, box, forces, kernel, time update, sites).
+void describe_dynamic_test(study::Json& P);
 
 struct Sample {
   double t, d_axis, r_max, r_min, volume;
 };
 
-/// Wall time of the phases of the steps (s, summed over the steps).
-struct PhaseTimes {
-  double forces = 0, spread = 0, solve = 0, interpolate = 0, update = 0;
-  double force_products = 0;  ///< SHVD: the dense products of the force call (part of forces)
-  double total() const { return forces + spread + solve + interpolate + update; }
-};
+using run::PhaseTimes;
 
 struct RelaxationResult {
   std::vector<Sample> series;
@@ -93,38 +91,31 @@ struct RelaxationResult {
   bool continued = false;  ///< restored from its checkpoint
   bool failed = false;     ///< a NumericalError stopped the run (message in `failure`)
   std::string failure;
-  std::string label;           ///< the label of the sitting that began it (e.g. the commit)
-  double seconds = 0;          ///< wall time of its steps, over all sittings (s)
-  PhaseTimes phases;           ///< summed over the steps
-  PhaseTimes median;           ///< per-step medians of each phase
-  double force_integral0 = 0;  ///< |sum_i F^_i|_inf at t = 0 (quadrature error, Sec. 4.1)
-  double max_force0 = 0;       ///< max_i |F^_i|_inf at t = 0
-  std::vector<double> block_ends;  ///< phases.total() at each mark_block() (Table 1's lockstep blocks)
+  std::string label;                 ///< the label of the sitting that began it (the commit)
+  double seconds = 0;                ///< wall time of its steps, over all sittings (s)
+  PhaseTimes phases;                 ///< summed over the steps
+  PhaseTimes median;                 ///< per-step medians of each phase
+  double force_integral0 = NAN;      ///< |sum_i F^_i|_inf at t = 0 (quadrature error, Sec. 4.1)
+  double max_force0 = NAN;           ///< max_i |F^_i|_inf at t = 0
+  std::vector<double> block_ends;    ///< phases.total() at each mark_block() (lockstep blocks)
   double d_axis() const { return series.empty() ? NAN : series.back().d_axis; }
 };
 
-/// The interpolation sites of SHVD for degree M (maximal-determinant-like, built once per M).
-const surface::SphereSites& interpolation_sites(int M);
-
-/// One relaxation on the library's coupled step (steady periodic Stokes, forward Euler) stepped by
-/// the library's run loop. Its records (series "samples"), per-step phase times ("phases"), the
-/// quantities at t = 0 ("start") and the lockstep block ends ("blocks") are series of the run, so a
-/// run kept in a checkpoint continues, or is read back when finished, with all of them.
+/// One relaxation on the library's run loop. Its records (series "samples"), per-step phase times
+/// ("phases"), the quantities at t = 0 ("start") and the lockstep block ends ("blocks") are series
+/// of the run, so a run kept in a checkpoint continues, or is read back when finished, with them.
 class Relaxation {
  public:
-  /// Builds the fluid, and the SHVD cell type (operators, LU of Y) or the LDSM state. checkpoint:
-  /// where the run is kept (restored from there when it holds this run); empty: nowhere. label:
-  /// kept with a fresh run (the commit that began it). sitting: the wall seconds advance_all()
-  /// may step.
+  /// checkpoint: where the run is kept (restored from there when it holds this run); empty:
+  /// nowhere. label: kept with a fresh run. sitting: the wall seconds advance_all() may step.
   Relaxation(const RelaxationSpec& spec, const EvaluationSet& eval, const std::string& checkpoint = "",
              const std::string& label = "", double sitting = INFINITY);
   ~Relaxation();
-  /// One step (the diagnostics recorded when due). Returns false once the run is over (its end,
-  /// or a NumericalError, kept in the result as `failed` / `failure`).
+  /// One step; false once the run is over (its end, or a NumericalError kept as `failed`).
   bool advance();
   /// Steps to the end or the sitting's end; returns whether the run is over.
   bool advance_all();
-  /// Appends phases.total() to the block ends (kept with the run).
+  /// Appends the wall time of the steps so far to the block ends.
   void mark_block();
   int step() const;
   RelaxationResult result() const;
@@ -134,13 +125,51 @@ class Relaxation {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Runs one relaxation to its end (kept in `checkpoint` when one is named; a finished run kept
-/// there is read back without a step).
-RelaxationResult relax(const RelaxationSpec& spec, const EvaluationSet& eval, const std::string& checkpoint = "",
-                       const std::string& label = "", double sitting = INFINITY);
+/// The runs of a study, each computed once per invocation; with --resumable or at full scale also
+/// kept in DIR/run_<label>.h5, the run loop's checkpoint, so that a run the sitting (--sitting)
+/// leaves unfinished continues next time and a finished one is read back. Runs are counted in
+/// groups, recorded as results["runs"][group]: a group is finished when every run asked of it has
+/// finished; an unfinished run gives no values (its checks are not run).
+class Relaxations {
+ public:
+  explicit Relaxations(const study::Options& opt);
+  /// The group the next runs belong to.
+  void group(const std::string& g) { group_ = g; }
+  const EvaluationSet& sites(index_t n);
+  /// The stored maximal-determinant-like set of degree N with the weights of eq. (45).
+  const EvaluationSet& md_sites(int N);
+  std::string md_file(int N) const;
+  /// The finished run of spec (or one with no samples when the sitting left it unfinished).
+  const RelaxationResult& get(const RelaxationSpec& spec);
+  /// Runs of one evaluation set in lockstep, one step of each in turn, so that a change of load
+  /// on the shared machine falls on all alike; all again unless all are kept finished. The wall
+  /// time of each run's steps is marked at the ends of `blocks` blocks of steps (block_ends).
+  std::vector<const RelaxationResult*> lockstep(const std::vector<RelaxationSpec>& specs, int blocks);
+  /// results["runs"][group] for every group.
+  void record(study::Json& results) const;
 
-/// Runs several relaxations in lockstep, one step of each in turn, so that a change of load on a
-/// shared machine falls on all of them alike (the timing runs of Table 1).
-std::vector<RelaxationResult> relax_lockstep(const std::vector<std::pair<RelaxationSpec, const EvaluationSet*>>& runs);
+ private:
+  struct Group {
+    double t = 0, t_end = 0, seconds = 0;
+    long steps = 0;
+    bool finished = true;
+    std::string stopped;  ///< the first numerical stop among them
+  };
+  std::string path(const std::string& label) const;
+  const EvaluationSet& sites_of(const RelaxationSpec& s);
+  void count(const std::string& key, const RelaxationSpec& s, const RelaxationResult* r);
+  void finished(const std::string& label, const RelaxationResult& r) const;
+
+  const study::Options& opt_;
+  bool keep_;
+  const study::Sitting sitting_;
+  RelaxationResult skipped_;  ///< what a run not started in this sitting gives (no samples)
+  std::string group_ = "runs";
+  std::map<std::string, Group> groups_;
+  std::set<std::string> counted_;
+  std::map<index_t, EvaluationSet> sets_;
+  std::map<int, EvaluationSet> md_sets_;
+  std::map<std::string, RelaxationResult> done_;
+};
 
 }  // namespace rbfib::chapter3

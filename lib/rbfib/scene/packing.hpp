@@ -25,18 +25,18 @@
 //    about the normal, which the seed leaves open, is drawn uniformly; a placement is also refused
 //    when a platelet site lies below the endothelium's surface or outside the box.
 // Distances between cells are between their data sites (the sites the scene places), cm.
-#include "common/cell_shape.hpp"
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/scene/scene.hpp"
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <string>
 #include <vector>
 
-namespace rbfib::chapter5_whole_blood {
+namespace rbfib::scene {
 
-using study::Vec3;
+using Vec3 = std::array<double, 3>;
 
 /// A reference shape at its data sites, n x 3 column-major (cm), centred at the origin, with
 /// the outward unit normal at each site.
@@ -109,11 +109,14 @@ double distance_to_red_cells(const std::vector<double>& X, index_t n, const std:
 /// Cells of one reference shape placed, in a batch's layout (n x 3N, X[(d N + c) n + i]).
 std::vector<double> batch_layout(const ReferenceSites& r, const std::vector<cells::Placement>& placements);
 
+/// The smallest distance between two of the N cells of n sites in a batch's layout (n x 3N).
+double closest_cells(const std::vector<double>& X, index_t n, index_t N, const Domain& box);
+
+/// Cell c's sites (n x 3) from a batch's layout (n x 3N, or the n x 6N state).
+std::vector<double> cell_sites(const std::vector<double>& X, index_t n, index_t N, index_t c);
+
 /// The smallest distance from the sites of a cell to points E (3m) spread over the whole period in x
 /// and z (the endothelium), each pair at its nearest periodic image.
 double sheet_distance(const std::vector<double>& X, index_t n, const std::vector<double>& E, const Domain& box);
 
-/// A placement's YAML flow map for a scene file ({type: ..., center: [...], axis: [...], angle: ...}).
-std::string placement_yaml(const std::string& type, const cells::Placement& p);
-
-}  // namespace rbfib::chapter5_whole_blood
+}  // namespace rbfib::scene

@@ -1,6 +1,5 @@
-#include "chapter5_whole_blood/initialization.hpp"
+#include "rbfib/scene/packing.hpp"
 #include "rbfib/core/constants.hpp"
-
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/surface/contact.hpp"
@@ -9,10 +8,9 @@
 #include <cmath>
 #include <sstream>
 
-namespace rbfib::chapter5_whole_blood {
+namespace rbfib::scene {
 
 namespace {
-
 
 /// A rotation as a unit quaternion (w, x, y, z).
 struct Quaternion {
@@ -134,6 +132,19 @@ double cell_distance(const std::vector<double>& A, index_t na, const std::vector
   const double centres = std::hypot(ca[0] - cb[0] - shift[0], ca[1] - cb[1], ca[2] - cb[2] - shift[2]);
   if (centres - ra - rb > cutoff) return centres - ra - rb;  // a lower bound, enough to tell far cells
   return surface::closest_points(A, na, B, nb, shift).distance;
+}
+
+std::vector<double> cell_sites(const std::vector<double>& X, index_t n, index_t N, index_t c) {
+  std::vector<double> Y(std::size_t(3 * n));
+  for (int d = 0; d < 3; ++d) std::copy_n(X.begin() + long((d * N + c) * n), n, Y.begin() + long(d * n));
+  return Y;
+}
+
+double closest_cells(const std::vector<double>& X, index_t n, index_t N, const Domain& box) {
+  double best = INFINITY;
+  for (index_t a = 0; a < N; ++a)
+    for (index_t b = a + 1; b < N; ++b) best = std::min(best, cell_distance(cell_sites(X, n, N, a), n, cell_sites(X, n, N, b), n, box));
+  return best;
 }
 
 double sheet_distance(const std::vector<double>& X, index_t n, const std::vector<double>& E, const Domain& box) {
@@ -266,13 +277,4 @@ PlateletPlacement place_platelets(const ReferenceSites& platelet, const Domain& 
   return P;
 }
 
-std::string placement_yaml(const std::string& type, const cells::Placement& p) {
-  std::ostringstream o;
-  o.precision(10);
-  o << "{type: " << type << ", center: [" << p.center[0] / units::um << " um, " << p.center[1] / units::um << " um, "
-    << p.center[2] / units::um << " um], axis: [" << p.axis[0] << ", " << p.axis[1] << ", " << p.axis[2]
-    << "], angle: " << p.angle * 180 / pi << " deg}";
-  return o.str();
-}
-
-}  // namespace rbfib::chapter5_whole_blood
+}  // namespace rbfib::scene

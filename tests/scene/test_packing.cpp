@@ -1,5 +1,5 @@
-// The initialization of dissertation Sec. 5.2.1 (studies/chapter5_whole_blood/initialization.hpp).
-#include "chapter5_whole_blood/initialization.hpp"
+// The initialization of dissertation Sec. 5.2.1 (scene/packing.hpp).
+#include "rbfib/scene/packing.hpp"
 #include "rbfib/cells/presets.hpp"
 
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <cmath>
 
 using namespace rbfib;
-using namespace rbfib::chapter5_whole_blood;
+using namespace rbfib::scene;
 
 namespace {
 
@@ -18,7 +18,7 @@ std::vector<double> sites_of(const ReferenceSites& r, const cells::Placement& p)
 
 }  // namespace
 
-TEST(WholeBloodInit, ReferenceNormalsPointOutOfTheShape) {
+TEST(Packing, ReferenceNormalsPointOutOfTheShape) {
   // The platelet is the ellipsoid 1.55 x 1.55 x 0.5 um: its outward normal is grad(x^2/a^2 + ...).
   const ReferenceSites p = reference_sites(cells::platelet_spec(400, 400));
   const double a = 1.55 * um, c = 0.5 * um;
@@ -30,7 +30,7 @@ TEST(WholeBloodInit, ReferenceNormalsPointOutOfTheShape) {
   }
 }
 
-TEST(WholeBloodInit, TheRedCellsKeepTwoHApartAndTheLayoutIsReproducible) {
+TEST(Packing, TheRedCellsKeepTwoHApartAndTheLayoutIsReproducible) {
   const ReferenceSites r = reference_sites(cells::red_cell_spec(400, 1600));
   LayoutSpec spec;
   spec.h = 0.2 * um;
@@ -55,7 +55,7 @@ TEST(WholeBloodInit, TheRedCellsKeepTwoHApartAndTheLayoutIsReproducible) {
       EXPECT_GE(cell_distance(sites_of(r, L.red_cells[x]), r.n, sites_of(r, L.red_cells[y]), r.n, bumpy), 2 * spec.h) << x << " " << y;
 }
 
-TEST(WholeBloodInit, PlateletsFaceTheEndotheliumAtTheDrawnGap) {
+TEST(Packing, PlateletsFaceTheEndotheliumAtTheDrawnGap) {
   const ReferenceSites r = reference_sites(cells::red_cell_spec(400, 1600)), p = reference_sites(cells::platelet_spec(400, 400));
   LayoutSpec ls;
   ls.h = 0.2 * um;
@@ -88,7 +88,19 @@ TEST(WholeBloodInit, PlateletsFaceTheEndotheliumAtTheDrawnGap) {
   EXPECT_GT(cell_distance(sites_of(p, P.platelets[0]), p.n, sites_of(p, P.platelets[1]), p.n, bumpy), 0.5 * um);
 }
 
-TEST(WholeBloodInit, StartingTimesFollowTheSettlingTime) {
+TEST(Packing, ClosestCellsOfABatchIsTheSmallestPairDistance) {
+  const ReferenceSites r = reference_sites(cells::red_cell_spec(400, 1600));
+  LayoutSpec spec;
+  spec.h = 0.2 * um;
+  std::mt19937_64 rng(5);
+  const Layout L = red_cell_layout(r, bumpy, spec, rng);
+  const std::vector<double> X = batch_layout(r, L.red_cells);
+  EXPECT_EQ(closest_cells(X, r.n, 8, bumpy), L.closest);
+  const std::vector<double> Y = cell_sites(X, r.n, 8, 3), Z = sites_of(r, L.red_cells[3]);
+  EXPECT_EQ(Y, Z);
+}
+
+TEST(Packing, StartingTimesFollowTheSettlingTime) {
   std::mt19937_64 rng(3);
   const std::vector<double> t = starting_times(17e-3, 3e-3, 1000, rng);
   EXPECT_GT(t.front(), 17e-3);
