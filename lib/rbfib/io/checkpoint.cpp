@@ -246,7 +246,7 @@ scene::StartingState read_starting_state(const scene::Scene& s) {
   return start;
 }
 
-sim::ImmersedBoundary build(const scene::Scene& s) {
+sim::ImmersedBoundary build_scene(const scene::Scene& s) {
   if (s.start.checkpoint.empty()) return scene::build(s);
   const scene::StartingState start = read_starting_state(s);
   return scene::build(s, &start);

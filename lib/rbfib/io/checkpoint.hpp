@@ -66,6 +66,6 @@ Checkpoint read_checkpoint(const std::string& path);
 scene::StartingState read_starting_state(const scene::Scene& scene);
 
 /// Builds a scene's coupled step (scene::build), from its start when it has one.
-sim::ImmersedBoundary build(const scene::Scene& scene);
+sim::ImmersedBoundary build_scene(const scene::Scene& scene);
 
 }  // namespace rbfib::io

@@ -73,7 +73,7 @@ Run::Run(scene::Scene scene, Options options, Hooks hooks)
       source_(scene_->source),
       options_(std::move(options)),
       hooks_(std::move(hooks)),
-      ib_(io::build(*scene_)) {
+      ib_(io::build_scene(*scene_)) {
   start();
 }
 

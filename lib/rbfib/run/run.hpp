@@ -96,7 +96,7 @@ class Run {
   /// Builds the scene `text` (its origin names it in messages) and, when options.checkpoint names
   /// an existing checkpoint of the same text, restores it with its series and status. A
   /// checkpoint of another scene text is left for evolve() to replace. A scene with a start
-  /// (scene::Start) begins from its starting state (io::build).
+  /// (scene::Start) begins from its starting state (io::build_scene).
   Run(const std::string& text, const std::string& origin, Options options, Hooks hooks);
   /// The same for a scene already read (its text: scene.source).
   Run(scene::Scene scene, Options options, Hooks hooks);
