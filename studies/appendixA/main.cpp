@@ -5,47 +5,35 @@
 // checks in 2D and 3D (eqs. A.16, A.19-A.22) that the corrected operator reproduces quadratics at
 // every staggering and boundary type while CG converges on the corrected Helmholtz operator.
 // A 3D manufactured-solution convergence study gives the speed-versus-error curves.
+// Conventions recovered from the paper's numbers (reference/appendixA.yaml): time in seconds (dt =
+// 4 ms at N = 25, dt = 0.1/N s), T = 0.1 s, errors in the grid 2-norm sqrt(h sum e_i^2) and the max
+// norm, tabulated in units of 1e-6.
 //
 // Run:   build/studies/study_appendixA --scale quick --out runs/appendixA
-// (or `make reproduce-appendixA`, which also renders reports/appendixA/).
-//
-// Conventions recovered from the paper's numbers (see reference/appendixA.yaml): time in seconds
-// (dt = 4 ms at N = 25, dt = 0.1/N s), final time T = 0.1 s, errors in the grid 2-norm
-// sqrt(h sum e_i^2) and the max norm, tabulated in units of 1e-6.
-#include "common/study.hpp"
-
-#include "rbfib/fluid/diffusion.hpp"
-
 #include <cmath>
-#include <cstdio>
-#include <functional>
 #include <numbers>
 #include <string>
 #include <vector>
 
+#include "common/study.hpp"
+#include "common/tables.hpp"
+#include "rbfib/fluid/diffusion.hpp"
+#include "rbfib/fluid/grid_norms.hpp"
+#include "rbfib/grid/boundary_values.hpp"
+
 namespace {
 
 using namespace rbfib;
-using rbfib::study::Json;
+namespace st = rbfib::study;
+using st::Json;
+using st::row;
+using BC = BoundaryCondition;
 
 constexpr double kTableUnit = 1e-6;  // the tables' errors are in units of 1e-6
 
-struct Norms {
-  double l2 = 0, linf = 0;
-};
-
-// Grid 2-norm sqrt(h_x h_y h_z sum e^2) and max norm of a - b.
-Norms error_norms(const Box& box, const dvec& a, const dvec& b) {
-  dvec e = a;
-  blas::axpy(-1.0, b, e);
-  double cell = 1.0;
-  for (int d = 0; d < box.dims; ++d) cell *= box.axes[d].h();
-  return {std::sqrt(cell) * blas::norm2(e), blas::norm_inf(e)};
-}
-
-// ---- 1. The 1D test problem of Tables A.1/A.2: u_t = u_xx + 1, u(x,0) = x(1-x)/2 ----------------
+// ---- The 1D test problem of Tables A.1/A.2: u_t = u_xx + 1, u(x,0) = x(1-x)/2 -------------------
 struct TableRun {
-  Norms err;
+  GridNorms err;
   double seconds = 0;
   int max_cg_iterations = 0;
 };
@@ -54,23 +42,24 @@ Box table_box(int N, bool dirichlet) {
   Box box;
   box.dims = 1;
   // Fig. A.1: Dirichlet at cell centres x_i = h(i - 1/2) (g = 1/2); Neumann at x_i = h i, i = 1..N-1 (g = 1).
-  const BoundaryCondition bc = dirichlet ? BoundaryCondition::dirichlet() : BoundaryCondition::neumann();
+  const BC bc = dirichlet ? BC::dirichlet() : BC::neumann();
   box.axes[0] = Axis{N, 1.0, dirichlet ? 0.5 : 1.0, bc, bc, 0.0};
   return box;
 }
 
-// Runs to time T with step dt and returns u(T) - u(0) in norms; `profile_times` (in steps) are
-// recorded into `profiles` as u - u0 along x.
+// Runs `steps` steps of dt and returns u(T) - u(0) in norms; at `profile_steps` u - u0 along x is
+// appended to `profiles`.
 TableRun run_table_problem(int N, bool dirichlet, Correction corr, double dt, int steps,
-                           const std::vector<int>& profile_steps = {}, std::vector<std::vector<double>>* profiles = nullptr) {
+                           const std::vector<int>& profile_steps = {},
+                           std::vector<std::vector<double>>* profiles = nullptr) {
   const Box box = table_box(N, dirichlet);
-  auto exact = [](double x, double, double) { return 0.5 * x * (1.0 - x); };
   // Neumann data u_x(0) = -u_x(1) = 1/2, i.e. du/dnu = 1/2 at both ends (nu inward); Dirichlet 0.
-  const BoundaryData gamma = sample_boundary(box, [&](int, int, double, double, double) { return dirichlet ? 0.0 : 0.5; });
-  const dvec u0 = sample(box, exact), f(u0.size(), 1.0);
+  const BoundaryData gamma =
+      sample_boundary(box, [&](int, int, double, double, double) { return dirichlet ? 0.0 : 0.5; });
+  const dvec u0 = sample(box, [](double x, double, double) { return 0.5 * x * (1.0 - x); }), f(u0.size(), 1.0);
   TableRun run;
   dvec u;
-  run.seconds = study::median_seconds(3, [&] {
+  run.seconds = st::median_seconds(3, [&] {
     u = u0;
     if (profiles) profiles->clear();
     CrankNicolsonDiffusion cn(box, 1.0, dt, corr, SolverOptions{"helmholtz (Crank-Nicolson)", 1e-15, 10 * N});
@@ -86,17 +75,48 @@ TableRun run_table_problem(int N, bool dirichlet, Correction corr, double dt, in
       }
     }
   });
-  if (!blas::all_finite(u)) throw NumericalError(Cause::non_finite, "appendixA: non-finite solution at N = " + std::to_string(N));
-  run.err = error_norms(box, u, u0);
+  if (!blas::all_finite(u))
+    throw NumericalError(Cause::non_finite, "appendixA: non-finite solution at N = " + std::to_string(N));
+  run.err = grid_error_norms(box, u, u0);
   return run;
 }
 
-using rbfib::study::table;
+// Table A.1 (Dirichlet) or A.2 (Neumann): the errors u(T) - u(0) in units of 1e-6 and relative.
+Json table_a(const st::Options& opt, const std::vector<int>& Ns, double T, bool dirichlet, Correction corr) {
+  Json t = st::table({"N", "h", "dt_ms", "err2", "err_inf", "err2_rel", "err_inf_rel", "cg_iterations", "seconds"},
+                     {"", "", "ms", "1e-6", "1e-6", "", "", "", "s"});
+  for (int N : Ns) {
+    const double dt = 0.1 / N, umax = 0.125;  // max of x(1-x)/2
+    const TableRun r = run_table_problem(N, dirichlet, corr, dt, int(std::lround(T / dt)));
+    t["rows"].push(row({N, 1.0 / N, dt / 1e-3, r.err.l2 / kTableUnit, r.err.linf / kTableUnit, r.err.l2 / umax,
+                        r.err.linf / umax, r.max_cg_iterations, r.seconds}));
+    st::log(opt, std::string(dirichlet ? "Dirichlet" : "Neumann") + ", N = " + to_text(N) + ": ||u - u0||_2 = " +
+                     to_text(r.err.l2) + ", " + to_text(r.max_cg_iterations) + " CG iterations/step");
+  }
+  return t;
+}
 
-// ---- 3. Quadratic exactness in 2D/3D for every staggering and boundary type ---------------------
+// Fig. A.1: u - u0 along x at h = 0.01, dt = 1 ms, after each of `steps` steps.
+Json fig_a1_profiles(bool dirichlet, Correction corr, const std::vector<int>& steps) {
+  std::vector<std::vector<double>> prof;
+  run_table_problem(100, dirichlet, corr, 1e-3, steps.back(), steps, &prof);
+  std::vector<std::string> cols = {"x"};
+  for (int s : steps) cols.push_back("t_" + std::to_string(s) + "ms");
+  Json t = st::table(cols);
+  const Box box = table_box(100, dirichlet);
+  for (int i = 0; i < box.n(0); ++i) {
+    Json::Array r{box.x(0, i)};
+    for (auto& p : prof) r.push_back(p[i]);
+    t["rows"].push(Json(r));
+  }
+  return t;
+}
+
+// ---- Quadratic exactness in 2D/3D for every staggering and boundary type -------------------------
 struct Quadratic {
   double operator()(double x, double y, double z) const {
-    return 0.3 + x - 2 * y + 0.5 * z + 1.2 * x * x - 0.7 * y * y + 0.9 * z * z + 0.4 * x * y - 0.6 * y * z + 0.25 * x * z;
+    return 0.3 + x - 2 * y + 0.5 * z + 1.2 * x * x - 0.7 * y * y + 0.9 * z * z + 0.4 * x * y - 0.6 * y * z +
+           0.25 * x * z;
   }
   double grad(int d, double x, double y, double z) const {
     if (d == 0) return 1 + 2.4 * x + 0.4 * y + 0.25 * z;
@@ -109,24 +129,12 @@ struct Quadratic {
 // gamma = alpha u + beta du/dnu for a function with gradient, on the box's faces.
 template <class F>
 BoundaryData boundary_data_of(const Box& box, const F& u) {
-  return sample_boundary(box, [&](int d, int side, double x, double y, double z) {
-    const BoundaryCondition& bc = side ? box.axes[d].upper : box.axes[d].lower;
-    return bc.alpha * u(x, y, z) + bc.beta * (side ? -1.0 : 1.0) * u.grad(d, x, y, z);
-  });
+  return robin_boundary_data(box, u, [&](int d, double x, double y, double z) { return u.grad(d, x, y, z); });
 }
 
-struct BoundaryChoice {
-  const char* name;
-  BoundaryCondition bc;
-};
-const BoundaryChoice kBoundaries[] = {{"dirichlet", BoundaryCondition::dirichlet()},
-                                      {"neumann", BoundaryCondition::neumann()},
-                                      {"robin(1,-0.1)", BoundaryCondition::robin(1.0, -0.1)}};
-const double kStaggerings[] = {0.5, 1.0, 0.25};
-
 struct QuadraticCheck {
-  double operator_error = 0;   // max |L q + B gamma - I~ Lap q| / (max|q| / h_min^2)
-  double steady_error = 0;     // max |x - q| / max |q| for the Helmholtz solve with solution q
+  double operator_error = 0;  // max |L q + B gamma - I~ Lap q| / (max|q| / h_min^2)
+  double steady_error = 0;    // max |x - q| / max |q| for the Helmholtz solve with solution q
   int cg_iterations = 0;
 };
 
@@ -148,9 +156,10 @@ QuadraticCheck check_quadratic(const Box& box, Correction corr) {
   // Backward-Euler Helmholtz solve with the quadratic as solution, from a zero initial guess:
   // (I~ - k L) x = I~ (q - k Lap q) + k B gamma has x = q exactly when L q + B gamma = I~ Lap q.
   const double k = hmin;
-  dvec b;
+  dvec b, Iu;
   L.apply_identity(dvec(u.size(), -k * q.laplacian(box.dims)), b);
-  blas::axpy(1.0, [&] { dvec t; L.apply_identity(u, t); return t; }(), b);
+  L.apply_identity(u, Iu);
+  blas::axpy(1.0, Iu, b);
   L.add_boundary(gamma, b, k);
   dvec x(u.size(), 0.0);
   auto helmholtz = [&](const dvec& in, dvec& out) { L.apply(in, out, 1.0, -k); };
@@ -160,7 +169,38 @@ QuadraticCheck check_quadratic(const Box& box, Correction corr) {
   return c;
 }
 
-// ---- 4. 3D manufactured solution: u = exp(-t) cos(1.3x + 0.2) cos(0.9y - 0.1) (2 + cos 2 pi z) --
+// Every staggering g in {1/2, 1, 1/4} and boundary type in x and y, corrected and not; z is Neumann
+// at cell centres (uncorrected-exact) so every x/y case is seen in 3D too.
+Json quadratics_table() {
+  const std::pair<const char*, BC> boundaries[] = {
+      {"dirichlet", BC::dirichlet()}, {"neumann", BC::neumann()}, {"robin(1,-0.1)", BC::robin(1.0, -0.1)}};
+  Json t =
+      st::table({"dims", "g_x", "g_y", "bc_x", "bc_y", "corrected", "operator_error", "steady_error", "cg_iterations"});
+  for (int dims : {2, 3})
+    for (double gx : {0.5, 1.0, 0.25})
+      for (double gy : {0.5, 1.0, 0.25})
+        for (const auto& [nx, bx] : boundaries)
+          for (const auto& [ny, by] : boundaries)
+            for (Correction corr : {Correction::appendix_a, Correction::none}) {
+              Box box;
+              box.dims = dims;
+              box.axes[0] = Axis{9, 1.0, gx, bx, bx, 0.0};
+              box.axes[1] = Axis{7, 0.8, gy, by, by, -0.3};
+              box.axes[2] = Axis{6, 0.6, 0.5, BC::neumann(), BC::neumann(), 0.1};
+              QuadraticCheck c;
+              try {
+                c = check_quadratic(box, corr);
+              } catch (const NumericalError&) {
+                if (corr == Correction::appendix_a) throw;  // the corrected solve must always converge
+                c = QuadraticCheck{check_quadratic(box, Correction::none).operator_error, -1.0, -1};
+              }
+              t["rows"].push(row({dims, gx, gy, nx, ny, corr == Correction::appendix_a ? 1 : 0, c.operator_error,
+                                  c.steady_error, c.cg_iterations}));
+            }
+  return t;
+}
+
+// ---- 3D manufactured solution: u = exp(-t) cos(1.3x + 0.2) cos(0.9y - 0.1) (2 + cos 2 pi z) ------
 struct Manufactured {
   double t = 0;
   static constexpr double kx = 1.3, ky = 0.9, kz = 2 * std::numbers::pi;
@@ -182,185 +222,101 @@ struct Manufactured {
   }
 };
 
-struct Scene3D {
-  const char* name;
-  Box box;
-};
-
-std::vector<Scene3D> scenes_3d(int N) {
-  std::vector<Scene3D> s;
-  // A MAC x-velocity: on x-faces (g = 1) with walls in x, cell-centred in y (Dirichlet) and z (periodic).
+// Two MAC x-velocity boxes: on x-faces (g = 1) with walls in x, cell-centred in y (Dirichlet) and z
+// (periodic); and the same with Neumann on the x-faces (eps = -1/2; Dirichlet in y: eps = 1/4).
+std::vector<std::pair<const char*, Box>> scenes_3d(int N) {
   Box a;
   a.dims = 3;
-  a.axes[0] = Axis{N, 1.0, 1.0, BoundaryCondition::dirichlet(), BoundaryCondition::dirichlet(), 0.0};
-  a.axes[1] = Axis{N, 1.0, 0.5, BoundaryCondition::dirichlet(), BoundaryCondition::dirichlet(), 0.0};
-  a.axes[2] = Axis{N, 1.0, 0.5, BoundaryCondition::periodic(), BoundaryCondition::periodic(), 0.0};
-  s.push_back({"dirichlet g=(1,1/2,1/2)", a});
-  // Neumann on x-faces (eps = -1/2), Dirichlet at cell centres in y (eps = 1/4).
+  a.axes[0] = Axis{N, 1.0, 1.0, BC::dirichlet(), BC::dirichlet(), 0.0};
+  a.axes[1] = Axis{N, 1.0, 0.5, BC::dirichlet(), BC::dirichlet(), 0.0};
+  a.axes[2] = Axis{N, 1.0, 0.5, BC::periodic(), BC::periodic(), 0.0};
   Box b = a;
-  b.axes[0].lower = b.axes[0].upper = BoundaryCondition::neumann();
-  s.push_back({"neumann x g=1, dirichlet y g=1/2", b});
-  return s;
+  b.axes[0].lower = b.axes[0].upper = BC::neumann();
+  return {{"dirichlet g=(1,1/2,1/2)", a}, {"neumann x g=1, dirichlet y g=1/2", b}};
 }
 
-struct ConvergenceRun {
-  double err_inf = 0, err_l2 = 0, seconds = 0;
-  int cg_iterations = 0;
-};
-
-ConvergenceRun run_manufactured(const Box& box, Correction corr, double T) {
-  const double h = box.axes[0].h();
-  const int steps = int(std::lround(T / (0.5 * h)));
+// Crank-Nicolson to time T with dt ~ h/2: relative max and 2-norm errors, CG iterations, time.
+Json::Array run_manufactured(const Box& box, Correction corr, double T) {
+  const int steps = int(std::lround(T / (0.5 * box.axes[0].h())));
   const double dt = T / steps;
   Manufactured m;
-  ConvergenceRun r;
+  int cg_iterations = 0;
   dvec u;
-  r.seconds = study::median_seconds(3, [&] {
+  const double seconds = st::median_seconds(3, [&] {
     m.t = 0;
     u = sample(box, m);
     CrankNicolsonDiffusion cn(box, 1.0, dt, corr, SolverOptions{"helmholtz (3D manufactured)", 1e-13, 5000});
     for (int s = 0; s < steps; ++s) {
       m.t = (s + 0.5) * dt;
       const dvec f = sample(box, [&](double x, double y, double z) { return m.forcing(x, y, z); });
-      const BoundaryData g = boundary_data_of(box, m);
-      r.cg_iterations = std::max(r.cg_iterations, cn.step(u, f, g).iterations);
+      cg_iterations = std::max(cg_iterations, cn.step(u, f, boundary_data_of(box, m)).iterations);
     }
   });
   m.t = steps * dt;
   const dvec exact = sample(box, m);
-  const Norms n = error_norms(box, u, exact);
+  const GridNorms n = grid_error_norms(box, u, exact);
   const double scale = blas::norm_inf(exact);
-  r.err_inf = n.linf / scale;
-  r.err_l2 = n.l2 / scale;
-  return r;
-}
-
-int run(int argc, char** argv) {
-  const auto opt = study::parse_command_line(argc, argv, "appendixA",
-                                             "Boundary error correction for staggered grids: Tables A.1, A.2, Fig. A.1 "
-                                             "and their corrected counterparts; 2D/3D exactness; speed versus error.");
-  const bool full = opt.scale == study::Scale::full;
-  Json results = study::make_results(opt);
-
-  // 0. Parameters (the seed's Table A.1/A.2 setup).
-  const double T = 0.1;  // s (100 ms)
-  std::vector<int> Ns = {25, 50, 100, 200};
-  if (full) Ns.insert(Ns.end(), {400, 800});
-  Json& par = results["parameters"];
-  par["equation"] = "u_t = mu u_xx + f on (0,1), mu = 1, f = 1, u(x,0) = x(1-x)/2";
-  par["final_time_s"] = T;
-  par["dt_s"] = "0.1 / N (4 ms at N = 25)";
-  par["N"] = std::vector<double>(Ns.begin(), Ns.end());
-  par["table_error_unit"] = kTableUnit;
-  par["cg_rtol"] = 1e-15;
-  for (const auto& [k, v] : std::vector<std::pair<std::string, std::string>>{
-           {"dirichlet_grid", "g = 1/2: x_i = h(i - 1/2), i = 1..N; u = 0 at x = 0, 1"},
-           {"neumann_grid", "g = 1: x_i = h i, i = 1..N-1; u_x(0) = -u_x(1) = 1/2"}})
-    par[k] = v;
-
-  // 1-2. Tables A.1 and A.2, without and with the correction.
-  for (int dirichlet = 1; dirichlet >= 0; --dirichlet)
-    for (Correction corr : {Correction::none, Correction::appendix_a}) {
-      const std::string id = std::string(dirichlet ? "tableA1" : "tableA2") + (corr == Correction::none ? "" : "_corrected");
-      Json t = table({"N", "h", "dt_ms", "err2", "err_inf", "err2_rel", "err_inf_rel", "cg_iterations", "seconds"},
-                          {"", "", "ms", "1e-6", "1e-6", "", "", "", "s"});
-      for (int N : Ns) {
-        const double dt = 0.1 / N;
-        const TableRun r = run_table_problem(N, dirichlet, corr, dt, int(std::lround(T / dt)));
-        const double umax = 0.125;  // max of x(1-x)/2
-        t["rows"].push(Json::Array{N, 1.0 / N, dt / 1e-3, r.err.l2 / kTableUnit, r.err.linf / kTableUnit,
-                                   r.err.l2 / umax, r.err.linf / umax, r.max_cg_iterations, r.seconds});
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "||u - u0||_2 = %.9g, ||u - u0||_inf = %.9g, ", r.err.l2, r.err.linf);
-        study::log(opt, id + ": N = " + std::to_string(N) + ", " + buf +
-                            std::to_string(r.max_cg_iterations) + " CG iterations/step");
-      }
-      results["tables"][id] = t;
-    }
-
-  // 3. Fig. A.1: u - u0 at h = 0.01 over time (dt = 1 ms), uncorrected and corrected.
-  const std::vector<int> fig_steps = {10, 50, 100, 500, full ? 5000 : 1000};
-  for (int dirichlet = 1; dirichlet >= 0; --dirichlet)
-    for (Correction corr : {Correction::none, Correction::appendix_a}) {
-      std::vector<std::vector<double>> prof;
-      run_table_problem(100, dirichlet, corr, 1e-3, fig_steps.back(), fig_steps, &prof);
-      const Box box = table_box(100, dirichlet);
-      std::vector<std::string> cols = {"x"};
-      std::vector<std::string> units = {""};
-      for (int s : fig_steps) {
-        cols.push_back("t_" + std::to_string(s) + "ms");
-        units.push_back("");
-      }
-      Json t = table(cols, units);
-      for (int i = 0; i < box.n(0); ++i) {
-        Json::Array row{box.x(0, i)};
-        for (auto& p : prof) row.push_back(p[i]);
-        t["rows"].push(Json(row));
-      }
-      results["tables"][std::string("figA1_") + (dirichlet ? "dirichlet" : "neumann") +
-                        (corr == Correction::none ? "" : "_corrected")] = t;
-    }
-  study::log(opt, "Fig. A.1 profiles done");
-
-  // 4. Quadratics in 2D and 3D at every staggering and boundary type (eqs. A.16, A.22).
-  {
-    Json t = table({"dims", "g_x", "g_y", "bc_x", "bc_y", "corrected", "operator_error", "steady_error", "cg_iterations"},
-                        {"", "", "", "", "", "", "", "", ""});
-    int cases = 0;
-    for (int dims : {2, 3})
-      for (double gx : kStaggerings)
-        for (double gy : kStaggerings)
-          for (const auto& bx : kBoundaries)
-            for (const auto& by : kBoundaries)
-              for (Correction corr : {Correction::appendix_a, Correction::none}) {
-                Box box;
-                box.dims = dims;
-                box.axes[0] = Axis{9, 1.0, gx, bx.bc, bx.bc, 0.0};
-                box.axes[1] = Axis{7, 0.8, gy, by.bc, by.bc, -0.3};
-                // z: Neumann at cell centres (uncorrected-exact) so every x/y case is seen in 3D too
-                box.axes[2] = Axis{6, 0.6, 0.5, BoundaryCondition::neumann(), BoundaryCondition::neumann(), 0.1};
-                QuadraticCheck c;
-                try {
-                  c = check_quadratic(box, corr);
-                } catch (const NumericalError&) {
-                  if (corr == Correction::appendix_a) throw;  // the corrected solve must always converge
-                  c = QuadraticCheck{check_quadratic(box, Correction::none).operator_error, -1.0, -1};
-                }
-                t["rows"].push(Json::Array{dims, gx, gy, bx.name, by.name, corr == Correction::appendix_a ? 1 : 0,
-                                           c.operator_error, c.steady_error, c.cg_iterations});
-                ++cases;
-              }
-    results["tables"]["quadratics"] = t;
-    study::log(opt, "quadratic exactness: " + std::to_string(cases) + " cases (2D and 3D, g in {1/2, 1, 1/4}, "
-                    "Dirichlet/Neumann/Robin)");
-  }
-
-  // 5. 3D manufactured solution: convergence and speed versus error, with and without correction.
-  {
-    Json t = table({"scene", "corrected", "N", "h", "err_inf", "err_l2", "cg_iterations", "seconds"},
-                        {"", "", "", "", "", "", "", "s"});
-    std::vector<int> sizes = {8, 16, 32};
-    if (full) sizes.push_back(64);
-    const double Tm = 0.25;
-    for (int N : sizes)
-      for (const auto& sc : scenes_3d(N))
-        for (Correction corr : {Correction::none, Correction::appendix_a}) {
-          const ConvergenceRun r = run_manufactured(sc.box, corr, Tm);
-          t["rows"].push(Json::Array{sc.name, corr == Correction::appendix_a ? "corrected" : "uncorrected", N, 1.0 / N,
-                                     r.err_inf, r.err_l2, r.cg_iterations, r.seconds});
-          study::log(opt, std::string("3D ") + sc.name + (corr == Correction::none ? " uncorrected" : " corrected") +
-                              ": N = " + std::to_string(N) + ", relative max error " + to_text(r.err_inf) + ", " +
-                              to_text(r.seconds) + " s");
-        }
-    results["tables"]["manufactured3d"] = t;
-    results["parameters"]["manufactured3d"] =
-        "u = exp(-t) cos(1.3x+0.2) cos(0.9y-0.1) (2+cos 2 pi z) on [0,1]^3, mu = 1, T = 0.25, dt ~ h/2, CN";
-  }
-
-  study::write_results(opt, results);
-  return 0;
+  return {n.linf / scale, n.l2 / scale, cg_iterations, seconds};
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return rbfib::study::run_main("appendixA", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) {
+  return st::run_main("appendixA", [&] {
+    const auto opt = st::parse_command_line(argc, argv, "appendixA",
+                                            "Boundary error correction for staggered grids: Tables A.1, A.2, Fig. A.1 "
+                                            "and their corrected counterparts; 2D/3D exactness; speed versus error.");
+    const bool full = opt.scale == st::Scale::full;
+
+    // 1. Parameters (the seed's Table A.1/A.2 setup).
+    const double T = 0.1;  // s (100 ms)
+    std::vector<int> Ns = {25, 50, 100, 200};
+    if (full) Ns.insert(Ns.end(), {400, 800});
+    const std::vector<int> fig_steps = {10, 50, 100, 500, full ? 5000 : 1000};  // Fig. A.1, dt = 1 ms
+    const std::vector<int> sizes = full ? std::vector<int>{8, 16, 32, 64} : std::vector<int>{8, 16, 32};
+    Json results = st::make_results(opt);
+    Json& par = results["parameters"];
+    par["equation"] = "u_t = mu u_xx + f on (0,1), mu = 1, f = 1, u(x,0) = x(1-x)/2";
+    par["final_time_s"] = T;
+    par["dt_s"] = "0.1 / N (4 ms at N = 25)";
+    par["N"] = std::vector<double>(Ns.begin(), Ns.end());
+    par["table_error_unit"] = kTableUnit;
+    par["cg_rtol"] = 1e-15;
+    par["dirichlet_grid"] = "g = 1/2: x_i = h(i - 1/2), i = 1..N; u = 0 at x = 0, 1";
+    par["neumann_grid"] = "g = 1: x_i = h i, i = 1..N-1; u_x(0) = -u_x(1) = 1/2";
+    Json& tables = results["tables"];
+    const std::pair<Correction, std::string> corrections[] = {{Correction::none, ""},
+                                                              {Correction::appendix_a, "_corrected"}};
+
+    // 2. Tables A.1 and A.2, without and with the correction; Fig. A.1: u - u0 at h = 0.01 over time.
+    for (int dirichlet = 1; dirichlet >= 0; --dirichlet)
+      for (const auto& [corr, suffix] : corrections)
+        tables[(dirichlet ? "tableA1" : "tableA2") + suffix] = table_a(opt, Ns, T, dirichlet, corr);
+    for (int dirichlet = 1; dirichlet >= 0; --dirichlet)
+      for (const auto& [corr, suffix] : corrections)
+        tables[std::string("figA1_") + (dirichlet ? "dirichlet" : "neumann") + suffix] =
+            fig_a1_profiles(dirichlet, corr, fig_steps);
+    st::log(opt, "Fig. A.1 profiles done");
+
+    // 3. Quadratics in 2D and 3D at every staggering and boundary type (eqs. A.16, A.22).
+    tables["quadratics"] = quadratics_table();
+    st::log(opt, "quadratic exactness: 2D and 3D, g in {1/2, 1, 1/4}, Dirichlet/Neumann/Robin");
+
+    // 4. 3D manufactured solution: convergence and speed versus error, with and without correction.
+    Json t = st::table({"scene", "corrected", "N", "h", "err_inf", "err_l2", "cg_iterations", "seconds"});
+    for (int N : sizes)
+      for (const auto& [name, box] : scenes_3d(N))
+        for (Correction corr : {Correction::none, Correction::appendix_a}) {
+          Json::Array r{name, corr == Correction::appendix_a ? "corrected" : "uncorrected", N, 1.0 / N};
+          for (const Json& x : run_manufactured(box, corr, 0.25)) r.push_back(x);
+          t["rows"].push(Json(r));
+          st::log(opt, std::string("3D ") + name + (corr == Correction::none ? " uncorrected" : " corrected") +
+                           ": N = " + std::to_string(N) + " done");
+        }
+    tables["manufactured3d"] = t;
+    par["manufactured3d"] =
+        "u = exp(-t) cos(1.3x+0.2) cos(0.9y-0.1) (2+cos 2 pi z) on [0,1]^3, mu = 1, T = 0.25, dt ~ h/2, CN";
+    st::write_results(opt, results);
+    return 0;
+  });
+}

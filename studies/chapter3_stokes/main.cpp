@@ -10,14 +10,14 @@
 //   f = 3 mu k^2 u + grad p   (div u = 0, -mu lap u + grad p = f).
 //
 // Run:   build/studies/study_chapter3_stokes --scale quick --out runs/chapter3_stokes
+#include <cmath>
+
 #include "common/study.hpp"
 #include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/fluid/periodic_stokes.hpp"
 #include "rbfib/linalg/blas.hpp"
-
-#include <cmath>
 
 using namespace rbfib;
 namespace st = rbfib::study;
@@ -53,12 +53,65 @@ double max_diff(const dvec& a, const dvec& b) {
   blas::axpy(-1.0, b, d);
   return blas::norm_inf(d);
 }
+/// The solver on grids of eta^3 cells: error against the exact flow, the divergence it leaves
+/// (relative: max |D u| h / U) and the median time per solve.
+Json refinement(const st::Options& opt, const ExactFlow& flow, double L, const std::vector<int>& etas, int repeats,
+                double& worst_div) {
+  Json conv = st::table({"eta", "h_um", "err_inf", "max_div_rel", "seconds", "seconds_per_eta3_log_eta3"},
+                        {"", "um", "", "", "s", "s"});
+  worst_div = 0;
+  for (int eta : etas) {
+    const MacGrid g = periodic_grid(eta, L);
+    PeriodicStokesSolver S(g, flow.mu);
+    const MacOperators& ops = S.operators();
+    VectorField f, u, ue;
+    for (int a = 0; a < 3; ++a) {
+      f[a] = sample(ops.component_box(a), [&](double x, double y, double z) { return flow.f(a, x, y, z); });
+      ue[a] = sample(ops.component_box(a), [&](double x, double y, double z) { return flow.u(a, x, y, z); });
+    }
+    dvec p, div;
+    S.solve(f, u, p);
+    const double t = st::median_seconds(repeats, [&] { S.solve(f, u, p); });
+    double err = 0;
+    for (int a = 0; a < 3; ++a) err = std::max(err, max_diff(u[a], ue[a]));
+    err /= flow.U;
+    ops.divergence(u, nullptr, div);
+    const double div_rel = blas::norm_inf(div) * g.h(0) / flow.U;
+    worst_div = std::max(worst_div, div_rel);
+    const double n3 = double(eta) * eta * eta;
+    conv["rows"].push(st::row({eta, g.h(0) / units::um, err, div_rel, t, t / (n3 * std::log(n3))}));
+    st::log(opt, "2. eta = " + to_text(eta) + ": err_inf " + to_text(err) + ", max |D u| h / U " + to_text(div_rel) +
+                     ", " + to_text(t * 1e3) + " ms per solve");
+  }
+  return conv;
+}
+
+/// The largest relative difference of velocity and pressure between the direct solve and PCG to
+/// 1e-13 on the unsteady system (rho/dt, dt = 50 ns, Sec. 5.2) at eta = 32, a non-Stokes forcing.
+double agreement_with_iterative(const ExactFlow& flow, double L) {
+  const double alpha = 1.0 / (50 * units::ns);
+  const MacGrid g = periodic_grid(32, L);
+  PeriodicStokesSolver S(g, flow.mu, alpha);
+  const MacOperators& ops = S.operators();
+  VectorField f, u, ui;
+  for (int a = 0; a < 3; ++a)
+    f[a] = sample(ops.component_box(a),
+                  [&](double x, double y, double z) { return flow.f(a, x, y, z) * (1 + 0.3 * std::sin(3 * x / L)); });
+  dvec p, q;
+  S.solve(f, u, p);
+  S.solve_iteratively(f, ui, q, 1e-13);
+  double diff = max_diff(q, p) / blas::norm_inf(p);
+  for (int a = 0; a < 3; ++a) diff = std::max(diff, max_diff(ui[a], u[a]) / blas::norm_inf(u[a]));
+  return diff;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   return st::run_main("chapter3_stokes", [&] {
-    const st::Options opt = st::parse_command_line(argc, argv, "chapter3_stokes",
-                                                   "Periodic Stokes solver of Sec. 3.2: order, divergence, agreement, time per solve");
+    const st::Options opt =
+        st::parse_command_line(argc, argv, "chapter3_stokes",
+                               "Periodic Stokes solver of Sec. 3.2: order, divergence, agreement, time per solve");
     const bool full = opt.scale == st::Scale::full;
 
     // ---- 1. Parameters -----------------------------------------------------------------------
@@ -70,62 +123,22 @@ int main(int argc, char** argv) {
     Json& P = results["parameters"];
     P["box_um"] = "[-12, 12]^3 (2L = 24 um, periodic)";
     P["viscosity_cP"] = mu / units::cP;
-    P["exact_flow"] = "u = U (sin kx cos ky cos kz, -cos kx sin ky cos kz, 0), p = P sin kx sin ky sin kz, k = 2 pi / 24 um";
+    P["exact_flow"] =
+        "u = U (sin kx cos ky cos kz, -cos kx sin ky cos kz, 0), p = P sin kx sin ky sin kz, k = 2 pi / 24 um";
     P["U_mm_per_s"] = flow.U / (units::mm / units::s);
     P["P_dyn_per_cm2"] = flow.P;
     P["repeats"] = repeats;
 
     // ---- 2. Refinement: error, divergence, time per solve -----------------------------------
-    Json conv = st::table({"eta", "h_um", "err_inf", "max_div_rel", "seconds", "seconds_per_eta3_log_eta3"},
-                          {"", "um", "", "", "s", "s"});
     double worst_div = 0;
-    for (int eta : etas) {
-      const MacGrid g = periodic_grid(eta, L);
-      PeriodicStokesSolver S(g, mu);
-      const MacOperators& ops = S.operators();
-      VectorField f, u, ue;
-      for (int a = 0; a < 3; ++a) {
-        f[a] = sample(ops.component_box(a), [&](double x, double y, double z) { return flow.f(a, x, y, z); });
-        ue[a] = sample(ops.component_box(a), [&](double x, double y, double z) { return flow.u(a, x, y, z); });
-      }
-      dvec p, div;
-      S.solve(f, u, p);
-      const double t = st::median_seconds(repeats, [&] { S.solve(f, u, p); });
-      double err = 0;
-      for (int a = 0; a < 3; ++a) err = std::max(err, max_diff(u[a], ue[a]));
-      err /= flow.U;
-      ops.divergence(u, nullptr, div);
-      const double div_rel = blas::norm_inf(div) * g.h(0) / flow.U;
-      worst_div = std::max(worst_div, div_rel);
-      const double n3 = double(eta) * eta * eta;
-      conv["rows"].push(Json::Array{Json(eta), Json(g.h(0) / units::um), Json(err), Json(div_rel), Json(t), Json(t / (n3 * std::log(n3)))});
-      st::log(opt, "2. eta = " + to_text(eta) + ": err_inf " + to_text(err) + ", max |D u| h / U " + to_text(div_rel) + ", " +
-                       to_text(t * 1e3) + " ms per solve");
-    }
-    results["tables"]["convergence"] = conv;
+    results["tables"]["convergence"] = refinement(opt, flow, L, etas, repeats, worst_div);
     results["values"]["max_div_rel"] = worst_div;
 
     // ---- 3. Agreement with iterative solves of the same discrete (unsteady) system ----------
-    {
-      const int eta = 32;
-      const double alpha = 1.0 / (50 * units::ns);  // rho / dt, dt = 50 ns (Sec. 5.2)
-      const MacGrid g = periodic_grid(eta, L);
-      PeriodicStokesSolver S(g, mu, alpha);
-      const MacOperators& ops = S.operators();
-      VectorField f, u;
-      for (int a = 0; a < 3; ++a)
-        f[a] = sample(ops.component_box(a), [&](double x, double y, double z) { return flow.f(a, x, y, z) * (1 + 0.3 * std::sin(3 * x / L)); });
-      dvec p;
-      S.solve(f, u, p);
-      VectorField ui;
-      dvec q;
-      S.solve_iteratively(f, ui, q, 1e-13);
-      double diff = max_diff(q, p) / blas::norm_inf(p);
-      for (int a = 0; a < 3; ++a) diff = std::max(diff, max_diff(ui[a], u[a]) / blas::norm_inf(u[a]));
-      results["values"]["max_rel_diff_vs_iterative"] = diff;
-      P["agreement_case"] = "eta = 32, unsteady Stokes with rho/dt, dt = 50 ns; PCG to 1e-13";
-      st::log(opt, "3. unsteady Stokes, eta = 32: direct vs iterative max relative difference " + to_text(diff));
-    }
+    const double diff = agreement_with_iterative(flow, L);
+    results["values"]["max_rel_diff_vs_iterative"] = diff;
+    P["agreement_case"] = "eta = 32, unsteady Stokes with rho/dt, dt = 50 ns; PCG to 1e-13";
+    st::log(opt, "3. unsteady Stokes, eta = 32: direct vs iterative max relative difference " + to_text(diff));
     st::write_results(opt, results);
     return 0;
   });
