@@ -253,13 +253,9 @@ Outcome run_orientation(const Orientation& o, const Setup& s, double figure_time
   hk.progress = [&](const run::Progress& q) { st::log(opt, who + ": " + q.describe()); };
   run::Run runner(text, dir + "/scene.yaml", ro, hk);
   const bool ended_before = runner.progress().ended();
-  if (runner.continued()) {
-    for (const std::vector<double>& r : runner.series("shapes").rows) figure_taken = figure_taken || r.at(1) == figure;
-    st::log(opt, who + ": continuing from " + checkpoint + " at step " + to_text(runner.ib().step_count()));
-  } else {
-    st::log(opt, who + " (" + o.what + "): nearest sample sites " +
-                     fmt(runner.series("samples").rows.front().at(kGap) / units::um) + " um; F_fict A0 = " + fmt(kFict * A0) + " dyn per cell");
-  }
+  for (const std::vector<double>& r : runner.series("shapes").rows) figure_taken = figure_taken || r.at(1) == figure;  // continued
+  st::log(opt, who + (runner.continued() ? ": continuing from step " + to_text(runner.ib().step_count())
+                                         : " (" + o.what + "): nearest sample sites " + fmt(runner.series("samples").rows.front().at(kGap) / units::um) + " um"));
   const run::Progress q = runner.evolve();
   if (q.ended() && !ended_before) {  // the final state (the last good one when stopped)
     take(runner.ib(), runner.series(), kEnd);
