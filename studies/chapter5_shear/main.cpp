@@ -86,25 +86,32 @@ std::vector<double> sample(const sim::ImmersedBoundary& ib, long material, doubl
   return r;
 }
 
+struct Case {
+  std::string id;  // the run's name in results["runs"] and the suffix of its values
+  double rate, mu, dt, t_end;
+  double first_panel;  // Fig. 5.2's first panel (gdot t)
+};
+
 struct Run {
-  double rate = 0, mu = 0, dt = 0, t_end = 0;
+  Case c;
   st::SceneRun run;              // its samples and series, steps, eq. 5.4's stop
   std::vector<double> snapshot;  // the data sites at t_snapshot (empty when not asked or not reached)
   st::RunProgress progress() const {  // the time reached: steps of the fixed dt (samples are sparser)
-    return {run.finished, double(run.steps) * dt, t_end, run.steps, run.seconds_per_step(), run.stopped};
+    return {run.finished, double(run.steps) * c.dt, c.t_end, run.steps, run.seconds_per_step(), run.stopped};
   }
 };
 
-/// Runs one scene to t_end (or until a numerical failure stops it), sampling every `every` steps.
+/// Runs one case to its end (or until a numerical failure stops it) with about `samples` samples.
 /// Fig. 5.2's outlines (series "outline_<k>": [t], then [z, y] of each data site about the centre)
 /// at the start, 1/3, 2/3 and the end, and the data sites at t_snapshot (if > 0; series
 /// "snapshot"), are kept with the run as they are taken, so that a continued run has them all.
-Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, int every, const st::Options& opt, bool resumable,
-              const std::string& prefix = "", double max_seconds = INFINITY, double t_snapshot = 0) {
+Run shear_run(const Setup& s, const Case& c, int samples, const st::Options& opt, const std::string& prefix, double max_seconds,
+              double t_snapshot) {
   char mu_text[32];
-  std::snprintf(mu_text, sizeof mu_text, "%g", mu / cP);
-  const std::string tag = prefix + "rate" + to_text(std::lround(rate)) + "_mu" + mu_text + "cP_dt" + to_text(std::lround(dt / units::ns)) + "ns";
-  const long total = std::lround(t_end / dt), snapshot_step = t_snapshot > 0 ? std::lround(t_snapshot / dt) : -1;
+  std::snprintf(mu_text, sizeof mu_text, "%g", c.mu / cP);
+  const std::string tag = prefix + "rate" + to_text(std::lround(c.rate)) + "_mu" + mu_text + "cP_dt" + to_text(std::lround(c.dt / units::ns)) + "ns";
+  const long total = std::lround(c.t_end / c.dt), snapshot_step = t_snapshot > 0 ? std::lround(t_snapshot / c.dt) : -1;
+  const int every = std::max(1, int(std::lround(c.t_end / c.dt / samples)));
   long material = 0;
   st::SceneRunHooks hooks;
   hooks.at_start = [&](const sim::ImmersedBoundary& ib) {  // the rim site farthest along the profile's long axis e_x x p
@@ -127,7 +134,7 @@ Run shear_run(const Setup& s, double rate, double mu, double dt, double t_end, i
         for (long i = 0; i < n; ++i) o.rows.push_back({X[std::size_t(2 * n + i)] - c[2], X[std::size_t(n + i)] - c[1]});
       }
   };
-  Run r{rate, mu, dt, t_end, st::run_scene(scene_text(s, rate, mu, dt, t_end), tag, every, resumable, opt, hooks, max_seconds), {}};
+  Run r{c, st::run_scene(scene_text(s, c.rate, c.mu, c.dt, c.t_end), tag, every, s.full, opt, hooks, max_seconds), {}};
   const auto it = r.run.series.find("snapshot");
   if (it != r.run.series.end() && it->second.rows.size() == 2 && snapshot_step >= 0 && r.run.steps >= snapshot_step) r.snapshot = it->second.rows[1];
   return r;
@@ -157,7 +164,7 @@ Analysis analyse(const Run& r, double first_panel) {
   int volumes = 0;
   for (const std::vector<double>& s : r.run.samples) {
     a.t.push_back(s[kT]);
-    a.strain.push_back(r.rate * s[kT]);
+    a.strain.push_back(r.c.rate * s[kT]);
     axis.push_back(std::atan2(s[kAxes + 1], s[kAxes + 2]));
     incl.push_back(s[kInclination]);
     mat.push_back(std::atan2(s[kMaterial + 1] - s[kCenter + 1], s[kMaterial + 2] - s[kCenter + 2]));
@@ -172,11 +179,11 @@ Analysis analyse(const Run& r, double first_panel) {
   a.axis = st::unwrap(axis, pi);
   a.inclination = st::unwrap(incl, pi);
   a.material = st::unwrap(mat, 2 * pi);
-  for (const Vec3& p : st::jeffery_axis({s0[kAxes], s0[kAxes + 1], s0[kAxes + 2]}, a.aspect, r.rate, 2, 1, a.t)) jef.push_back(std::atan2(p[1], p[2]));
+  for (const Vec3& p : st::jeffery_axis({s0[kAxes], s0[kAxes + 1], s0[kAxes + 2]}, a.aspect, r.c.rate, 2, 1, a.t)) jef.push_back(std::atan2(p[1], p[2]));
   a.jeffery = st::unwrap(jef, pi);
   const std::size_t n = a.t.size(), h = n / 2;
   auto rate = [&](const std::vector<double>& v) {
-    return -st::slope(std::vector<double>(a.t.begin() + long(h), a.t.end()), std::vector<double>(v.begin() + long(h), v.end())) / r.rate;
+    return -st::slope(std::vector<double>(a.t.begin() + long(h), a.t.end()), std::vector<double>(v.begin() + long(h), v.end())) / r.c.rate;
   };
   a.body_rate = rate(a.axis);
   a.jeffery_rate = rate(a.jeffery);
@@ -195,12 +202,6 @@ Analysis analyse(const Run& r, double first_panel) {
   }
   return a;
 }
-
-struct Case {
-  std::string id;  // the run's name in results["runs"] and the suffix of its values
-  double rate, mu, dt, t_end;
-  double first_panel;  // Fig. 5.2's first panel (gdot t)
-};
 
 struct Tables {
   Json orientation = st::table({"rate_1_s", "mu_cP", "t_ms", "strain", "axis_deg", "jeffery_axis_deg", "inclination_deg", "material_deg",
@@ -231,7 +232,8 @@ void describe(Json& P, const Setup& s, const std::vector<Case>& cases) {
 }
 
 /// One case's rows (its angles, summary and outlines as in Fig. 5.2) and values.
-void tabulate(Json& results, Tables& T, const Case& c, const Run& r, const st::Options& opt) {
+void tabulate(Json& results, Tables& T, const Run& r, const st::Options& opt) {
+  const Case& c = r.c;
   const Analysis a = analyse(r, c.first_panel);
   const std::size_t stride = std::max<std::size_t>(1, a.t.size() / 200);
   for (std::size_t i = 0; i < a.t.size(); i += stride)
@@ -285,15 +287,15 @@ void dt_scan(Json& results, const std::vector<Run>& members, std::size_t own, do
     const Run& r = members[k];
     const Analysis a = analyse(r, 0);
     const bool stable = r.run.finished && r.run.stopped.empty() && a.force_growth < 2;
-    if (stable) largest = std::max(largest, r.dt);
+    if (stable) largest = std::max(largest, r.c.dt);
     // Eq. 5.4's bound (1/4) sqrt(h rho / ||f||_inf) at the largest sampled force density.
     const double f_max = *std::max_element(a.force.begin(), a.force.end());
-    scan["rows"].push(row({r.dt / us, r.t_end / ms, stable ? 1.0 : 0.0, r.run.stopped.empty() ? Json() : Json(r.run.steps * r.dt / us),
+    scan["rows"].push(row({r.c.dt / us, r.c.t_end / ms, stable ? 1.0 : 0.0, r.run.stopped.empty() ? Json() : Json(r.run.steps * r.c.dt / us),
                            a.force_growth, r.run.seconds_per_step(), 0.25 * std::sqrt(h * rho / f_max) / us}));
     if (k + 1 < members.size() && !r.snapshot.empty() && !members[k + 1].snapshot.empty()) {
       double sum = 0;  // the rms difference of the data sites, against the wall time of the step dt to 1 ms
       for (std::size_t i = 0; i < r.snapshot.size(); ++i) sum += (r.snapshot[i] - members[k + 1].snapshot[i]) * (r.snapshot[i] - members[k + 1].snapshot[i]);
-      diffs["rows"].push(row({r.dt / us, std::sqrt(sum / double(r.snapshot.size())) / units::um, r.run.seconds_per_step() * double(std::lround(t_diff / r.dt))}));
+      diffs["rows"].push(row({r.c.dt / us, std::sqrt(sum / double(r.snapshot.size())) / units::um, r.run.seconds_per_step() * double(std::lround(t_diff / r.c.dt))}));
     }
   }
   results["tables"]["dt_scan"] = scan;
@@ -328,7 +330,6 @@ int main(int argc, char** argv) {
     // itself; half its step to 1 ms, the reference for the last difference.
     const std::vector<double> scan_steps = full ? std::vector<double>{3.2, 1.6, 0.8, 0.4, 0.2} : std::vector<double>{6.4, 3.2, 1.6};
     const double t_scan = 3 * ms, t_diff = 1 * ms;
-    auto every = [](double t_end, double dt, int samples) { return std::max(1, int(std::lround(t_end / dt / samples))); };
     Json results = st::make_results(opt);
     describe(results["parameters"], s, cases);
 
@@ -338,16 +339,14 @@ int main(int argc, char** argv) {
     std::size_t jobs_left = scan_steps.size() + 1 + cases.size();
     std::vector<Run> members;
     for (double d : scan_steps)
-      members.push_back(shear_run(s, scanned.rate, scanned.mu, d * us, t_scan, every(t_scan, d * us, 40), opt, full, "scan_",
-                                  sitting.remaining() / double(jobs_left--), t_diff));
-    const Run reference = shear_run(s, scanned.rate, scanned.mu, scanned.dt / 2, t_diff, every(t_diff, scanned.dt / 2, 40), opt, full, "scan_",
+      members.push_back(shear_run(s, {"", scanned.rate, scanned.mu, d * us, t_scan, 0}, 40, opt, "scan_", sitting.remaining() / double(jobs_left--), t_diff));
+    const Run reference = shear_run(s, {"", scanned.rate, scanned.mu, scanned.dt / 2, t_diff, 0}, 40, opt, "scan_",
                                     sitting.remaining() / double(jobs_left--), t_diff);
     Tables T;
     for (const Case& c : cases) {
-      const Run r = shear_run(s, c.rate, c.mu, c.dt, c.t_end, every(c.t_end, c.dt, 400), opt, full, "", sitting.remaining() / double(jobs_left--),
-                              c.id == scanned.id ? t_diff : 0);
+      const Run r = shear_run(s, c, 400, opt, "", sitting.remaining() / double(jobs_left--), c.id == scanned.id ? t_diff : 0);
       st::record_run(results, c.id, r.progress());
-      tabulate(results, T, c, r, opt);
+      tabulate(results, T, r, opt);
       if (c.id == scanned.id) members.push_back(r);  // the dt scan's member at the run's own step
     }
     members.push_back(reference);
