@@ -25,6 +25,7 @@
 #include "common/cell_shape.hpp"
 #include "common/scene_run.hpp"
 #include "common/study.hpp"
+#include "rbfib/cells/measure.hpp"
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
@@ -165,7 +166,7 @@ std::vector<double> sample(const sim::ImmersedBoundary& ib, bool red, const Doma
   if (red) R[1] = INFINITY;
   for (index_t c = 0; c < 2; ++c) {
     const st::CellShape shape = st::cell_shape(X, n, N, c);
-    const std::vector<double> Y = cell_sites(X, n, N, c);
+    const std::vector<double> Y = cells::cell_points(X, n, N, c);
     if (red) R[1] = std::min(R[1], distance_to_red_cells(Y, n, XR, nr, box));
     double lowest = INFINITY, slowest = INFINITY, top = INFINITY;  // clearance, min speed, headroom
     for (index_t i = 0; i < n; ++i) {

@@ -1,4 +1,5 @@
 // The initialization of dissertation Sec. 5.2.1 (scene/packing.hpp).
+#include "rbfib/cells/measure.hpp"
 #include "rbfib/scene/packing.hpp"
 #include "rbfib/cells/presets.hpp"
 
@@ -96,7 +97,7 @@ TEST(Packing, ClosestCellsOfABatchIsTheSmallestPairDistance) {
   const Layout L = red_cell_layout(r, bumpy, spec, rng);
   const std::vector<double> X = batch_layout(r, L.red_cells);
   EXPECT_EQ(closest_cells(X, r.n, 8, bumpy), L.closest);
-  const std::vector<double> Y = cell_sites(X, r.n, 8, 3), Z = sites_of(r, L.red_cells[3]);
+  const std::vector<double> Y = cells::cell_points(X, r.n, 8, 3), Z = sites_of(r, L.red_cells[3]);
   EXPECT_EQ(Y, Z);
 }
 

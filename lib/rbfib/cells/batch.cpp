@@ -1,6 +1,7 @@
 #include "rbfib/cells/batch.hpp"
 
 #include "rbfib/core/error.hpp"
+#include "rbfib/core/rotation.hpp"
 #include "rbfib/mechanics/force_kernels.hpp"
 
 #include <thrust/copy.h>
@@ -114,13 +115,7 @@ std::vector<double> placed(const std::vector<double>& reference, index_t n, cons
             "must be finite and > 0");
     require(std::isfinite(p.center[d]), who + ": center[" + to_text(d) + "] (cm)", p.center[d], "must be finite");
   }
-  // Rodrigues: R = cos a I + sin a [k]x + (1 - cos a) k k^T.
-  const double k[3] = {p.axis[0] / an, p.axis[1] / an, p.axis[2] / an};
-  const double ca = std::cos(p.angle), sa = std::sin(p.angle);
-  const double K[3][3] = {{0, -k[2], k[1]}, {k[2], 0, -k[0]}, {-k[1], k[0], 0}};
-  double R[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) R[i][j] = (i == j ? ca : 0.0) + sa * K[i][j] + (1 - ca) * k[i] * k[j];
+  const Mat3 R = rotation_matrix(p.axis, p.angle);
   std::vector<double> X(static_cast<std::size_t>(3 * n));
   for (index_t i = 0; i < n; ++i)
     for (int a = 0; a < 3; ++a) {

@@ -1,4 +1,5 @@
 #include "rbfib/scene/packing.hpp"
+#include "rbfib/cells/measure.hpp"
 #include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
@@ -134,16 +135,10 @@ double cell_distance(const std::vector<double>& A, index_t na, const std::vector
   return surface::closest_points(A, na, B, nb, shift).distance;
 }
 
-std::vector<double> cell_sites(const std::vector<double>& X, index_t n, index_t N, index_t c) {
-  std::vector<double> Y(std::size_t(3 * n));
-  for (int d = 0; d < 3; ++d) std::copy_n(X.begin() + long((d * N + c) * n), n, Y.begin() + long(d * n));
-  return Y;
-}
-
 double closest_cells(const std::vector<double>& X, index_t n, index_t N, const Domain& box) {
   double best = INFINITY;
   for (index_t a = 0; a < N; ++a)
-    for (index_t b = a + 1; b < N; ++b) best = std::min(best, cell_distance(cell_sites(X, n, N, a), n, cell_sites(X, n, N, b), n, box));
+    for (index_t b = a + 1; b < N; ++b) best = std::min(best, cell_distance(cells::cell_points(X, n, N, a), n, cells::cell_points(X, n, N, b), n, box));
   return best;
 }
 

@@ -112,9 +112,6 @@ std::vector<double> batch_layout(const ReferenceSites& r, const std::vector<cell
 /// The smallest distance between two of the N cells of n sites in a batch's layout (n x 3N).
 double closest_cells(const std::vector<double>& X, index_t n, index_t N, const Domain& box);
 
-/// Cell c's sites (n x 3) from a batch's layout (n x 3N, or the n x 6N state).
-std::vector<double> cell_sites(const std::vector<double>& X, index_t n, index_t N, index_t c);
-
 /// The smallest distance from the sites of a cell to points E (3m) spread over the whole period in x
 /// and z (the endothelium), each pair at its nearest periodic image.
 double sheet_distance(const std::vector<double>& X, index_t n, const std::vector<double>& E, const Domain& box);
