@@ -225,8 +225,7 @@ scene::Scene whole_blood_scene(index_t rbc_nd, index_t rbc_ns) {
   sc.grid = make_mac_grid(3, {80, 60, 80}, {16 * um, 12 * um, 16 * um}, {MacBoundary::periodic, MacBoundary::dirichlet, MacBoundary::periodic});
   sc.walls[1][1].velocity = {0, 0, 12 * units::mm};
   sc.initial_shear = true;
-  sc.fluid.density = 1;
-  sc.fluid.viscosity = 1 * units::cP;
+  sc.fluid = {1, 1 * units::cP};  // g/cm^3, P
   sc.fluid_options.integrator = TimeIntegrator::backward_forward_euler;
   sc.fluid_options.dt = 50 * units::ns;
   sc.t_end = 1 * units::ms;

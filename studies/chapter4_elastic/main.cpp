@@ -52,8 +52,7 @@ scene::Scene relaxation_scene(int cells_per_axis, double dt, index_t n_sample, d
   scene::Scene sc;
   sc.grid.length = {16 * units::um, 16 * units::um, 16 * units::um};  // periodic on every axis
   sc.grid.cells = {cells_per_axis, cells_per_axis, cells_per_axis};
-  sc.fluid.density = 1;
-  sc.fluid.viscosity = 0.1 * units::cP;
+  sc.fluid = {1, 0.1 * units::cP};  // g/cm^3, P
   sc.fluid_options.integrator = scheme.integrator;
   sc.fluid_options.dt = dt;
   sc.t_end = t_end;

@@ -53,15 +53,13 @@ scene::Scene relaxation_scene(int r, double t_end) {
   sc.name = "chapter5_convergence_r" + to_text(r);
   const double L = 16 * units::um;
   sc.grid = make_mac_grid(3, {20 * r, 20 * r, 20 * r}, {L, L, L}, {MacBoundary::periodic, MacBoundary::dirichlet, MacBoundary::periodic});
-  sc.fluid.density = 1;
-  sc.fluid.viscosity = 1 * units::cP;
+  sc.fluid = {1, 1 * units::cP};  // g/cm^3, P
   sc.fluid_options.integrator = TimeIntegrator::peskin_two_stage;
   sc.fluid_options.dt = 180 * units::ns / r;
   sc.t_end = t_end;
   sc.ib.kernel = ib::Kernel::roma3;
   scene::CellTypeEntry red = scene::cell_type("red cell (Skalak only)", "red_cell", 125 * r * r, 500 * r * r);
-  red.spec.model = {};
-  red.spec.model.elastic.push_back(mechanics::EnergyDensity::skalak(cells::seed::red_cell_E, cells::seed::red_cell_G));
+  red.spec.model = {{mechanics::EnergyDensity::skalak(cells::seed::red_cell_E, cells::seed::red_cell_G)}};  // Skalak only
   sc.types.push_back(red);
   const double c = 8 * units::um;
   sc.cells.push_back({red.spec.name, {{c, c, c}, {0, 0, 1}, 0, {1 / 1.1, 1, 1.1}}});

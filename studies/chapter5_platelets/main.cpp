@@ -58,8 +58,7 @@ scene::Scene platelets_scene(const Setup& s) {
                           {MacBoundary::periodic, MacBoundary::dirichlet, MacBoundary::periodic});
   sc.walls[1][1].velocity = {0, 0, 12 * units::mm};
   sc.initial_shear = true;
-  sc.fluid.density = 1;
-  sc.fluid.viscosity = 1 * units::cP;
+  sc.fluid = {1, 1 * units::cP};  // g/cm^3, P
   sc.fluid_options.integrator = TimeIntegrator::backward_forward_euler;
   sc.fluid_options.dt = s.dt;
   sc.t_end = s.t_end;
