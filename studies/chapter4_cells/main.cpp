@@ -18,6 +18,7 @@
 #include "common/machine.hpp"
 #include "common/study.hpp"
 #include "rbfib/cells/presets.hpp"
+#include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/scene/scene.hpp"
@@ -215,6 +216,28 @@ void whole_blood_parameters(Json& P, index_t rbc_nd, index_t rbc_ns) {
   P["whole_blood_fluid"] = "rho = 1 g/cm^3, mu = 1 cP (the seed's code; at 0.1 cP its endothelium is unstable at 50 ns)";
 }
 
+/// Part 2's scene: two rows of four red cells at y = 6 um, concavities facing z, the rows staggered
+/// by 2 um; platelets lying flat (1 um thick) 0.3 um above the endothelium, between the rows (under
+/// a red cell at x = 12 um the rim, 2.1 um above the wall, would cut the platelet).
+scene::Scene whole_blood_scene(index_t rbc_nd, index_t rbc_ns) {
+  scene::Scene sc;
+  sc.name = "whole_blood_step";
+  sc.grid = make_mac_grid(3, {80, 60, 80}, {16 * um, 12 * um, 16 * um}, {MacBoundary::periodic, MacBoundary::dirichlet, MacBoundary::periodic});
+  sc.walls[1][1].velocity = {0, 0, 12 * units::mm};
+  sc.initial_shear = true;
+  sc.fluid = {1, 1 * units::cP};  // g/cm^3, P
+  sc.fluid_options.integrator = TimeIntegrator::backward_forward_euler;
+  sc.fluid_options.dt = 50 * units::ns;
+  sc.t_end = 1 * units::ms;
+  sc.ib.kernel = ib::Kernel::bspline3;
+  sc.types.push_back(scene::cell_type("red cell", "red_cell", rbc_nd, rbc_ns));
+  sc.types.push_back(scene::cell_type("platelet", "platelet", 900, 900));
+  for (int c = 0; c < 8; ++c) sc.cells.push_back({"red cell", {{(4 + 8 * (c / 4)) * um, 6 * um, (2 + 4 * (c % 4) + 2 * (c / 4)) * um}}});
+  for (int c = 0; c < 2; ++c) sc.cells.push_back({"platelet", {{8 * um, 1.8 * um, (4 + 8 * c) * um}, {1, 0, 0}, 90 * (pi / 180)}});
+  sc.point_sets.push_back({"endothelium", {false, 1, 1 * um, {128, 125}}, 2.5, 2.5e-7});
+  return sc;
+}
+
 /// Part 2, the whole-blood-size step: its split, and the dense products of the force calls
 /// against the better of two DGEMM ceilings (the one of the run's start, and one measured just
 /// before: this shared machine's speed drifts over a run). Returns the volume change.
@@ -278,30 +301,10 @@ int main(int argc, char** argv) {
     // ---- Part 2: the whole-blood-size step ------------------------------------------------------
     omp_set_num_threads(max_threads);
     whole_blood_parameters(P, rbc_nd, rbc_ns);
-    // The scene (docs/scenes.md), kept beside the results, where `rbfib run` reruns it: two rows of
-    // four red cells at y = 6 um, concavities facing z, the rows staggered by 2 um; platelets lying
-    // flat (1 um thick) 0.3 um above the endothelium, between the rows (under a red cell at
-    // x = 12 um the rim, 2.1 um above the wall, would cut the platelet).
-    std::string cells_text;
-    for (int c = 0; c < 8; ++c)
-      cells_text += "  - {type: red cell, center: [" + to_text(4 + 8 * (c / 4)) + " um, 6 um, " + to_text(2 + 4 * (c % 4) + 2 * (c / 4)) + " um]}\n";
-    for (int c = 0; c < 2; ++c)  // between the rows, clear of the red cells' rims
-      cells_text += "  - {type: platelet, center: [8 um, 1.8 um, " + to_text(4 + 8 * c) + " um], axis: [1, 0, 0], angle: 90 deg}\n";
-    const std::string text =
-        "# chapter4_cells: the whole-blood-size step (Sec. 5.2)\n"
-        "name: whole_blood_step\n"
-        "domain:\n  size: [16 um, 12 um, 16 um]\n  periodic: [x, z]\n"
-        "  walls:\n    y: {lower: [0 mm/s, 0 mm/s, 0 mm/s], upper: [0 mm/s, 0 mm/s, 12 mm/s]}\n  initial_flow: shear\n"
-        "fluid: {density: 1 g/cm^3, viscosity: 1 cP}\n"
-        "grid: {cells: [80, 60, 80]}\n"
-        "time: {integrator: backward_forward_euler, dt: 50 ns, end: 1 ms}\n"
-        "ib: {kernel: bspline3}\n"
-        "cell_types:\n  - {name: red cell, preset: red_cell, data_sites: " + to_text(rbc_nd) + ", sample_sites: " + to_text(rbc_ns) + "}\n"
-        "  - {name: platelet, preset: platelet, data_sites: 900, sample_sites: 900}\n"
-        "cells:\n" + cells_text +
-        "tethered_points:\n  - {name: endothelium, plane: {y: 1 um, points: [128, 125]}, k: 2.5 dyn/cm, eta: 2.5e-7 dyn s/cm}\n";
-    std::ofstream(opt.out_dir + "/scene_whole_blood.yaml") << text;
-    sim::ImmersedBoundary ib = scene::build(scene::parse_scene(text, "scene_whole_blood.yaml"));
+    // The scene (docs/scenes.md), kept beside the results, where `rbfib run` reruns it.
+    const scene::Scene sc = scene::checked(whole_blood_scene(rbc_nd, rbc_ns), "chapter4_cells: the whole-blood-size step (Sec. 5.2)");
+    std::ofstream(opt.out_dir + "/scene_whole_blood.yaml") << sc.source;
+    sim::ImmersedBoundary ib = scene::build(sc);
     st::log(opt, "2. " + ib.batch(0).type().describe() + "; " + ib.batch(1).type().describe());
     worst_volume = std::max(worst_volume, whole_blood_step(opt, results, ib, steps, dgemm_n, repeats, c.dgemm_flops));
     results["values"]["max_volume_change_rel"] = worst_volume;

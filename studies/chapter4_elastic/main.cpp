@@ -47,32 +47,33 @@ struct Scheme {
   }
 };
 
-/// A run's setup as a scene (scene/, docs/scenes.md), its values in CGS to 17 digits so that it
-/// reads back exactly; kept beside the results, where `rbfib run` reruns it.
-std::string scene_text(int cells_per_axis, double dt, index_t n_sample, double radius, double t_end, Scheme scheme) {
-  const std::string L = to_text(16 * units::um) + " cm", c = to_text(8 * units::um) + " cm";
-  return "# chapter4_elastic: a stretched Skalak sphere relaxing (Sec. 4.2.2.1)\n"
-         "domain: {size: [" + L + ", " + L + ", " + L + "], periodic: [x, y, z]}\n"
-         "fluid: {density: 1 g/cm^3, viscosity: " + to_text(0.1 * units::cP) + " P}\n"
-         "grid: {cells: [" + to_text(cells_per_axis) + ", " + to_text(cells_per_axis) + ", " + to_text(cells_per_axis) + "]}\n"
-         "time: {integrator: " + (scheme.integrator == TimeIntegrator::peskin_two_stage ? "peskin_two_stage" : "backward_forward_euler") +
-         ", coupling: " + (scheme.coupling == sim::Coupling::midpoint ? "midpoint" : "seed") + ", dt: " + to_text(dt) + " s, end: " +
-         to_text(t_end) + " s}\n"
-         "ib: {kernel: bspline3}\n"
-         "cell_types:\n  - {name: sphere, preset: skalak_sphere, radius: " + to_text(radius) + " cm, data_sites: 625, sample_sites: " +
-         to_text(n_sample) + "}\n"
-         "cells:\n  - {type: sphere, center: [" + c + ", " + c + ", " + c + "], stretch: [1, " + to_text(1 / 1.1) + ", " + to_text(1.1) +
-         "]}\n";
+/// A run's setup as a scene (scene/, docs/scenes.md), kept beside the results, where `rbfib run` reruns it.
+scene::Scene relaxation_scene(int cells_per_axis, double dt, index_t n_sample, double radius, double t_end, Scheme scheme) {
+  scene::Scene sc;
+  sc.grid.length = {16 * units::um, 16 * units::um, 16 * units::um};  // periodic on every axis
+  sc.grid.cells = {cells_per_axis, cells_per_axis, cells_per_axis};
+  sc.fluid = {1, 0.1 * units::cP};  // g/cm^3, P
+  sc.fluid_options.integrator = scheme.integrator;
+  sc.fluid_options.dt = dt;
+  sc.t_end = t_end;
+  sc.ib.coupling = scheme.coupling;
+  sc.ib.kernel = ib::Kernel::bspline3;
+  sc.types.push_back(scene::cell_type("sphere", "skalak_sphere", 625, n_sample, radius));
+  const double c = 8 * units::um;
+  sc.cells.push_back({"sphere", {{c, c, c}, {0, 0, 1}, 0, {1, 1 / 1.1, 1.1}}});
+  return sc;
 }
 
 Run relax(int cells_per_axis, double dt, index_t n_sample, double radius, double t_end, const st::Options& opt,
           Scheme scheme = {}) {
-  const std::string text = scene_text(cells_per_axis, dt, n_sample, radius, t_end, scheme);
-  const std::string file = "scene_n" + to_text(cells_per_axis) + "_dt" + to_text(std::lround(dt / units::ns)) + "ns_" +
-                           (scheme.coupling == sim::Coupling::midpoint ? "midpoint" : "seed") +
-                           (scheme.integrator == TimeIntegrator::peskin_two_stage ? "_peskin" : "_bfe") + ".yaml";
-  std::ofstream(opt.out_dir + "/" + file) << text;
-  sim::ImmersedBoundary ib = scene::build(scene::parse_scene(text, file));
+  const std::string tag = to_text(cells_per_axis) + "_dt" + to_text(std::lround(dt / units::ns)) + "ns_" +
+                          (scheme.coupling == sim::Coupling::midpoint ? "midpoint" : "seed") +
+                          (scheme.integrator == TimeIntegrator::peskin_two_stage ? "_peskin" : "_bfe");
+  scene::Scene sc = relaxation_scene(cells_per_axis, dt, n_sample, radius, t_end, scheme);
+  sc.name = "chapter4_elastic_n" + tag;
+  sc = scene::checked(sc, "chapter4_elastic: a stretched Skalak sphere relaxing (Sec. 4.2.2.1)");
+  std::ofstream(opt.out_dir + "/scene_n" + tag + ".yaml") << sc.source;
+  sim::ImmersedBoundary ib = scene::build(sc);
   const MacGrid& g = ib.fluid().grid();
   Run r;
   r.h_um = g.h(0) / units::um;

@@ -47,22 +47,23 @@ struct Run {
   std::string commit;  // the commit that began it
 };
 
-/// Grid r's setup as a scene (docs/scenes.md), in CGS to 17 digits so that it reads back exactly;
-/// kept beside the results, where `rbfib run` reruns it.
-std::string scene_text(int r, double t_end) {
-  const std::string L = to_text(16 * units::um) + " cm", c = to_text(8 * units::um) + " cm", n = to_text(20 * r);
-  return "# chapter5_convergence: a stretched red cell (Skalak only) relaxing in a channel (Sec. 5.1.1), r = " + to_text(r) + "\n"
-         "domain:\n  size: [" + L + ", " + L + ", " + L + "]\n  periodic: [x, z]\n"
-         "  walls:\n    y: {lower: [0 cm/s, 0 cm/s, 0 cm/s], upper: [0 cm/s, 0 cm/s, 0 cm/s]}\n"
-         "fluid: {density: 1 g/cm^3, viscosity: " + to_text(1 * units::cP) + " P}\n"
-         "grid: {cells: [" + n + ", " + n + ", " + n + "]}\n"
-         "time: {integrator: peskin_two_stage, dt: " + to_text(180 * units::ns / r) + " s, end: " + to_text(t_end) + " s}\n"
-         "ib: {kernel: roma3}\n"
-         "cell_types:\n  - name: red cell (Skalak only)\n    preset: red_cell\n    data_sites: " + to_text(125 * r * r) +
-         "\n    sample_sites: " + to_text(500 * r * r) + "\n    model: {elastic: [{law: skalak, E: " + to_text(cells::seed::red_cell_E) +
-         " dyn/cm, G: " + to_text(cells::seed::red_cell_G) + " dyn/cm}]}\n"
-         "cells:\n  - {type: red cell (Skalak only), center: [" + c + ", " + c + ", " + c + "], stretch: [" + to_text(1 / 1.1) + ", 1, " +
-         to_text(1.1) + "]}\n";
+/// Grid r's setup as a scene (docs/scenes.md), kept beside the results, where `rbfib run` reruns it.
+scene::Scene relaxation_scene(int r, double t_end) {
+  scene::Scene sc;
+  sc.name = "chapter5_convergence_r" + to_text(r);
+  const double L = 16 * units::um;
+  sc.grid = make_mac_grid(3, {20 * r, 20 * r, 20 * r}, {L, L, L}, {MacBoundary::periodic, MacBoundary::dirichlet, MacBoundary::periodic});
+  sc.fluid = {1, 1 * units::cP};  // g/cm^3, P
+  sc.fluid_options.integrator = TimeIntegrator::peskin_two_stage;
+  sc.fluid_options.dt = 180 * units::ns / r;
+  sc.t_end = t_end;
+  sc.ib.kernel = ib::Kernel::roma3;
+  scene::CellTypeEntry red = scene::cell_type("red cell (Skalak only)", "red_cell", 125 * r * r, 500 * r * r);
+  red.spec.model = {{mechanics::EnergyDensity::skalak(cells::seed::red_cell_E, cells::seed::red_cell_G)}};  // Skalak only
+  sc.types.push_back(red);
+  const double c = 8 * units::um;
+  sc.cells.push_back({red.spec.name, {{c, c, c}, {0, 0, 1}, 0, {1 / 1.1, 1, 1.1}}});
+  return sc;
 }
 
 /// Grid r's run through the library's run loop (run/run.hpp). Runs kept over sittings (full
@@ -73,7 +74,9 @@ std::string scene_text(int r, double t_end) {
 /// sitting ended first.
 Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& eval, const st::Options& opt,
           const st::Sitting& sitting, bool& finished) {
-  const std::string text = scene_text(r, t_end), file = "scene_r" + to_text(r) + ".yaml";
+  const std::string file = "scene_r" + to_text(r) + ".yaml";
+  const std::string text = scene::to_yaml(relaxation_scene(r, t_end),
+                                          "chapter5_convergence: a stretched red cell (Skalak only) relaxing in a channel (Sec. 5.1.1), r = " + to_text(r));
   std::ofstream(opt.out_dir + "/" + file) << text;
   run::Options o;
   o.t_end = t_end;

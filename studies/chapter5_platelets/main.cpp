@@ -29,6 +29,7 @@
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/series.hpp"
 #include "rbfib/core/units.hpp"
+#include "rbfib/scene/scene.hpp"
 
 #include <cmath>
 
@@ -49,25 +50,26 @@ struct Setup {
   double dt = 0, t_end = 0;
 };
 
-std::string scene_text(const Setup& s) {
-  auto um = [](double x) { return to_text(x) + " um"; };
-  std::string cells;
-  for (int c = 0; c < 2; ++c)
-    cells += "  - {type: platelet, center: [" + um(4 + 8 * c) + ", " + um(1 + gaps_um[c] + 0.5) + ", " + um(4 + 8 * c) +
-             "], axis: [1, 0, 0], angle: 90 deg}\n";
-  return "# chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)\n"
-         "name: chapter5_platelets\n"
-         "domain:\n  size: [16 um, 12 um, 16 um]\n  periodic: [x, z]\n"
-         "  walls:\n    y: {lower: [0 mm/s, 0 mm/s, 0 mm/s], upper: [0 mm/s, 0 mm/s, 12 mm/s]}\n"
-         "  initial_flow: shear\n"
-         "fluid: {density: 1 g/cm^3, viscosity: 1 cP}\n"
-         "grid: {cells: [" + to_text(s.cells_x) + ", " + to_text(s.cells_y) + ", " + to_text(s.cells_x) + "]}\n"
-         "time: {integrator: backward_forward_euler, dt: " + to_text(s.dt) + " s, end: " + to_text(s.t_end) + " s}\n"
-         "ib: {kernel: bspline3}\n"
-         "cell_types:\n  - {name: platelet, preset: platelet, data_sites: " + to_text(s.sites) + ", sample_sites: " + to_text(s.sites) + "}\n"
-         "cells:\n" + cells +
-         "tethered_points:\n  - {name: endothelium, plane: {y: 1 um, points: [" + to_text(s.endothelium) + ", " + to_text(s.endothelium) +
-         "]}, k: 2.5 dyn/cm, eta: 2.5e-7 dyn s/cm}\n";
+/// The two platelets over the flat endothelium (Sec. 5.2) as a scene, the flow started as the shear.
+scene::Scene platelets_scene(const Setup& s) {
+  scene::Scene sc;
+  sc.name = "chapter5_platelets";
+  sc.grid = make_mac_grid(3, {s.cells_x, s.cells_y, s.cells_x}, {16 * units::um, 12 * units::um, 16 * units::um},
+                          {MacBoundary::periodic, MacBoundary::dirichlet, MacBoundary::periodic});
+  sc.walls[1][1].velocity = {0, 0, 12 * units::mm};
+  sc.initial_shear = true;
+  sc.fluid = {1, 1 * units::cP};  // g/cm^3, P
+  sc.fluid_options.integrator = TimeIntegrator::backward_forward_euler;
+  sc.fluid_options.dt = s.dt;
+  sc.t_end = s.t_end;
+  sc.ib.kernel = ib::Kernel::bspline3;
+  sc.types.push_back(scene::cell_type("platelet", "platelet", s.sites, s.sites));
+  for (int c = 0; c < 2; ++c) {  // lying flat, the short axis along y; the centre 0.5 um above the gap
+    const double xz = (4 + 8 * c) * units::um;
+    sc.cells.push_back({"platelet", {{xz, (1 + gaps_um[c] + 0.5) * units::um, xz}, {1, 0, 0}, 90 * (pi / 180)}});
+  }
+  sc.point_sets.push_back({"endothelium", {false, 1, wall_y, {s.endothelium, s.endothelium}}, 2.5, 2.5e-7});
+  return sc;
 }
 
 /// One sample: t, then per platelet (centre 3, short axis 3, gap, volume), then the endothelium's
@@ -213,7 +215,8 @@ int main(int argc, char** argv) {
 
     st::SceneRunHooks hooks;
     hooks.sample = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib); };
-    const st::SceneRun run = st::run_scene(scene_text(s), "platelets", int(std::max(1L, total / 400)), opt.keeps_runs(), opt, hooks, st::Sitting(opt).remaining());
+    const std::string text = scene::to_yaml(platelets_scene(s), "chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)");
+    const st::SceneRun run = st::run_scene(text, "platelets", int(std::max(1L, total / 400)), opt.keeps_runs(), opt, hooks, st::Sitting(opt).remaining());
 
     std::vector<double> t;
     double endothelium_max = 0;
