@@ -1,100 +1,70 @@
-#include "capillary_run.hpp"
-#include "rbfib/core/constants.hpp"
+#include "common/capillary.hpp"
 
+#include "rbfib/cells/batch.hpp"
 #include "rbfib/cells/shapes.hpp"
 #include "rbfib/core/error.hpp"
-#include "rbfib/linalg/blas.hpp"
+#include "rbfib/fluid/periodic_stokes.hpp"
+#include "rbfib/io/hdf5.hpp"
 #include "rbfib/mechanics/ldsm.hpp"
-#include "rbfib/fluid/fluid_step.hpp"
 #include "rbfib/run/run.hpp"
-#include "rbfib/sim/ib_step.hpp"
+#include "rbfib/sim/capillary.hpp"
 #include "rbfib/surface/geometry.hpp"
+#include "rbfib/surface/shape_measures.hpp"
 
 #include <thrust/copy.h>
 #include <thrust/extrema.h>
 
 #include <algorithm>
-#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <optional>
 
 namespace rbfib::capillary {
-
-namespace {
-
-/// Area-weighted vertex normals of the triangulated surface X (n x 3), unit length.
-std::vector<double> vertex_normals(const std::vector<surface::Triangle>& tris, const std::vector<double>& X) {
-  const std::size_t n = X.size() / 3;
-  std::vector<double> N(3 * n, 0.0);
-  for (const auto& t : tris) {
-    double e1[3], e2[3], nn[3];
-    for (int k = 0; k < 3; ++k) {
-      e1[k] = X[k * n + t[1]] - X[k * n + t[0]];
-      e2[k] = X[k * n + t[2]] - X[k * n + t[0]];
-    }
-    surface::cross3(e1, e2, nn);
-    for (int v = 0; v < 3; ++v)
-      for (int k = 0; k < 3; ++k) N[k * n + t[v]] += nn[k];
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const double s = std::sqrt(N[i] * N[i] + N[n + i] * N[n + i] + N[2 * n + i] * N[2 * n + i]);
-    for (int k = 0; k < 3; ++k) N[k * n + i] = s > 0 ? N[k * n + i] / s : 0.0;
-  }
-  return N;
-}
-
-}  // namespace
 
 const char* to_string(Region r) { return r == Region::core ? "core" : "segment"; }
 
 struct Run::Impl {
   Model m;
   const chapter3::EvaluationSet* eval;
-  int around = 0, along = 0;
-  std::vector<double> Zcap;            // the capillary's reference nodes (cm), 3 n_cap
-  std::vector<double> Zc, W0;          // LDSM: reference vertices and their area weights
+  surface::CylinderPoints cap;
+  std::vector<double> Zc, W0;  // LDSM: reference vertices and their area weights
   std::vector<mechanics::EnergyDensity> energies;
   std::optional<run::Run> loop;
   std::vector<surface::Triangle> no_tris;
-  // what the accessors give, rebuilt from the run's series after each advance
-  std::vector<Sample> samples;
+  std::vector<Sample> samples;  // the accessors' copies of the run's series
   std::vector<View> kept_views;
-  Phases phase_sums;
-
-  static MacGrid make_grid(const Model& m) {
-    require(m.eta >= 8, "grid size eta", m.eta, "must be >= 8");
-    require(m.L > 0, "half box L (cm)", m.L, "must be > 0");
-    MacGrid g = make_mac_grid(3, {m.eta, m.eta, m.eta}, {2 * m.L, 2 * m.L, 2 * m.L},
-                              {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
-    g.origin = {-m.L, -m.L, -m.L};
-    return g;
-  }
+  double seconds = 0;
 
   Impl(const Model& model, const chapter3::EvaluationSet* e, const std::string& checkpoint, double sitting)
       : m(model), eval(e) {
+    require(m.eta >= 8, "grid size eta", m.eta, "must be >= 8");
     require(m.mu > 0, "viscosity mu (P)", m.mu, "must be > 0");
     require(m.dt > 0, "time step dt (s)", m.dt, "must be > 0");
     require(m.steps >= 0, "steps", m.steps, "must be >= 0");
     require(m.R_cap > 0 && m.R_cap < m.L, "capillary radius (cm)", m.R_cap, "must lie in (0, L)");
-    require(m.k_teth >= 0, "k_teth (dyn/cm)", m.k_teth, "must be >= 0");
     require(m.k_bend >= 0, "k_bend (erg)", m.k_bend, "must be >= 0");
-    require(m.record_every > 0, "record_every", m.record_every, "must be > 0");
-    require(m.view_every > 0, "view_every", m.view_every, "must be > 0");
-    // The coupled step of Sec. 3.3 with eqs. (94)-(95): steady Stokes, forward Euler, the
-    // background force after the spread forces, the capillary's nodes holding the frame.
-    auto fluid = std::make_unique<PeriodicStokesStep>(make_grid(m), FluidParameters{1.0, m.mu}, m.dt, true);
+    require(m.record_every > 0 && m.view_every > 0, "record_every, view_every", m.record_every, "must be > 0");
+    MacGrid g = make_mac_grid(3, {m.eta, m.eta, m.eta}, {2 * m.L, 2 * m.L, 2 * m.L},
+                              {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
+    g.origin = {-m.L, -m.L, -m.L};
+    auto fluid = std::make_unique<PeriodicStokesStep>(g, FluidParameters{1.0, m.mu}, m.dt, true);
     sim::IbOptions o;
     o.coupling = sim::Coupling::forward_euler;
     o.kernel = m.kernel;
     o.stopping_condition = false;
-    o.body_force_density = background(fluid->operators());
+    const bool segment = m.region == Region::segment;
+    o.body_force_density = sim::capillary_driving_force(fluid->operators(), m.R_cap, m.f_in,
+                                                        segment ? m.x0_cap : -INFINITY, segment ? m.x1_cap : INFINITY);
     sim::ImmersedBoundary ib(std::move(fluid), o);
     if (m.with_cell) add_cell(ib);
-    add_capillary(ib);
+    cap = surface::cylinder_points(m.R_cap, m.x0_cap, m.x1_cap, m.cap_spacing > 0 ? m.cap_spacing : m.h() / 2);
+    ib.add(sim::tethered_capillary("capillary", cap, m.k_teth));
     run::Options ro;
     ro.t_end = m.steps * m.dt;
     ro.checkpoint = checkpoint;
     ro.sitting = sitting;
-    ro.sample_every = run::Cadence{};  // the hooks record at their own steps
+    ro.sample_every = run::Cadence{};  // the hook records at its own steps
     run::Hooks hooks;
     hooks.after_step = [this](const sim::ImmersedBoundary& ib, const sim::IbStepReport* r, run::SeriesSet& s) {
       after_step(ib, r, s);
@@ -113,48 +83,6 @@ struct Run::Impl {
       d += to_text(x) + "\n";
     if (eval) d += eval->family + " " + to_text(eval->size()) + "\n";
     return d;
-  }
-
-  /// The background force on the x-faces: f_in inside the region, f_out elsewhere, zero sum.
-  VectorField background(const MacOperators& ops) const {
-    const Box& b = ops.component_box(0);
-    std::vector<double> bg(static_cast<std::size_t>(b.size()));
-    std::vector<char> in(bg.size());
-    index_t n_in = 0;
-    for (int kz = 0; kz < b.n(2); ++kz)
-      for (int jy = 0; jy < b.n(1); ++jy)
-        for (int ix = 0; ix < b.n(0); ++ix) {
-          const double x = b.x(0, ix), y = b.x(1, jy), z = b.x(2, kz);
-          bool inside = y * y + z * z < m.R_cap * m.R_cap;
-          if (m.region == Region::segment) inside = inside && x >= m.x0_cap && x <= m.x1_cap;
-          const index_t p = ix + index_t(b.n(0)) * (jy + index_t(b.n(1)) * kz);
-          in[p] = inside;
-          n_in += inside;
-        }
-    const double f_out = -m.f_in * double(n_in) / double(index_t(bg.size()) - n_in);
-    for (std::size_t p = 0; p < bg.size(); ++p) bg[p] = in[p] ? m.f_in : f_out;
-    return {dvec(bg.begin(), bg.end()), dvec(ops.component_box(1).size(), 0.0), dvec(ops.component_box(2).size(), 0.0)};
-  }
-
-  /// Nodes on the cylinder at the centres of equal patches, `around` x `along` of them, tethered
-  /// by eq. (93) and holding the frame (eqs. 94-95).
-  void add_capillary(sim::ImmersedBoundary& ib) {
-    const double s = m.cap_spacing > 0 ? m.cap_spacing : m.h() / 2;
-    around = std::max(8, int(std::lround(2 * pi * m.R_cap / s)));
-    along = std::max(2, int(std::lround((m.x1_cap - m.x0_cap) / s)));
-    const index_t n = index_t(around) * along;
-    Zcap.assign(static_cast<std::size_t>(3 * n), 0.0);
-    for (int j = 0; j < along; ++j)
-      for (int i = 0; i < around; ++i) {
-        const index_t q = index_t(j) * around + i;
-        const double phi = 2 * pi * (i + 0.5 * (j % 2)) / around;  // staggered rings
-        Zcap[q] = m.x0_cap + (m.x1_cap - m.x0_cap) * (j + 0.5) / along;
-        Zcap[n + q] = m.R_cap * std::cos(phi);
-        Zcap[2 * n + q] = m.R_cap * std::sin(phi);
-      }
-    sim::TetheredPoints cap{"capillary", dvec(Zcap.begin(), Zcap.end()), dvec(Zcap.begin(), Zcap.end()), m.k_teth, 0.0};
-    cap.frame = true;
-    ib.add(std::move(cap));
   }
 
   void add_cell(sim::ImmersedBoundary& ib) {
@@ -180,14 +108,15 @@ struct Run::Impl {
     require(m.k_bend == 0, "LDSM k_bend (erg)", m.k_bend, "must be 0: LDSM has no bending model (paper Sec. 2.6.3 and 5.1.2)");
     const index_t n = eval->size();
     Zc.assign(static_cast<std::size_t>(3 * n), 0.0);
+    std::vector<double> X = Zc;
     for (index_t i = 0; i < n; ++i) {
       double x[3];
       shape.position(eval->sites.lambda[i], eval->sites.theta[i], x);
-      for (int d = 0; d < 3; ++d) Zc[d * n + i] = x[d];
+      for (int d = 0; d < 3; ++d) {
+        Zc[d * n + i] = x[d];
+        X[d * n + i] = x[d] + m.start[d];
+      }
     }
-    std::vector<double> X = Zc;
-    for (index_t i = 0; i < n; ++i)
-      for (int d = 0; d < 3; ++d) X[d * n + i] += m.start[d];
     W0 = mechanics::ldsm_area_weights(eval->tris, Zc);
     ib.add(sim::LdsmShell{"red cell (LDSM)", eval->tris, Zc, X, energies});
   }
@@ -203,10 +132,9 @@ struct Run::Impl {
     if (r) {
       std::vector<std::vector<double>>& rows = s["samples"].rows;
       if (!rows.empty() && std::abs(rows.back()[0] - (k - 1) * m.dt) <= 1e-9 * m.dt) {
-        std::vector<double>& row = rows.back();
         const dvec& u0 = ib.fluid_state().u[0];
-        for (int d = 0; d < 3; ++d) row[6 + d] = r->frame_velocity[d];
-        row[9] = *thrust::max_element(u0.begin(), u0.end()) + r->frame_velocity[0];
+        for (int d = 0; d < 3; ++d) rows.back()[6 + d] = r->frame_velocity[d];
+        rows.back()[9] = *thrust::max_element(u0.begin(), u0.end()) + r->frame_velocity[0];
       }
       s["frame"].rows = {{r->frame_velocity[0], r->frame_velocity[1], r->frame_velocity[2]}};
       auto& ph = s["phases"].rows;
@@ -221,13 +149,12 @@ struct Run::Impl {
     v.t = k * m.dt;
     if (m.with_cell) {
       if (m.method == chapter3::Method::shvd) {
-        const cells::Batch& batch = ib.batch(0);
         cells::CellForces out;
-        cells::compute_forces(batch, out);
+        cells::compute_forces(ib.batch(0), out);
         for (int d = 0; d < 3; ++d) c[d] = out.cells.centroid[0][d];
         area = out.cells.area[0];
         volume = out.cells.volume[0];
-        if (view_due(k)) shvd_view(batch, out, v);
+        if (view_due(k)) shvd_view(ib.batch(0), out, v);
       } else {
         const std::vector<double>& X = ib.shell(0).shell().X;
         const surface::PolyhedronMeasures pm = surface::polyhedron_measures(eval->tris, X);
@@ -249,7 +176,7 @@ struct Run::Impl {
     double cap_disp = 0;
     for (std::size_t q = 0; q < ncap; ++q) {
       double d2 = 0;
-      for (int d = 0; d < 3; ++d) d2 += (X[d * ncap + q] - Zcap[d * ncap + q]) * (X[d * ncap + q] - Zcap[d * ncap + q]);
+      for (int d = 0; d < 3; ++d) d2 += (X[d * ncap + q] - cap.X[d * ncap + q]) * (X[d * ncap + q] - cap.X[d * ncap + q]);
       cap_disp = std::max(cap_disp, std::sqrt(d2));
     }
     s["samples"].columns = {"t (s)", "cx (cm)", "cy (cm)", "cz (cm)", "area (cm^2)", "volume (cm^3)", "ucx (cm/s)",
@@ -257,17 +184,21 @@ struct Run::Impl {
     s["samples"].rows.push_back({v.t, c[0], c[1], c[2], area, volume, NAN, NAN, NAN, NAN, cap_disp, max_density});
   }
 
+  static double norm(const std::vector<double>& F, std::size_t n, std::size_t i) {
+    return std::sqrt(F[i] * F[i] + F[n + i] * F[n + i] + F[2 * n + i] * F[2 * n + i]);
+  }
+
   /// The SHVD surface at its n evaluation sites: positions, |density|, normals and H.
   void shvd_view(const cells::Batch& batch, const cells::CellForces& out, View& v) const {
     v.X = out.positions.to_host();
     const std::vector<double> D = out.density.to_host();
     const std::size_t n = v.X.size() / 3;
-    v.f.resize(n);
-    for (std::size_t i = 0; i < n; ++i) v.f[i] = std::sqrt(D[i] * D[i] + D[n + i] * D[n + i] + D[2 * n + i] * D[2 * n + i]);
     const std::vector<surface::Jet> jets = surface::jets_from_operators(batch.type().to_sample(), batch.positions_host());
+    v.f.resize(n);
     v.H.resize(n);
     v.normal.resize(3 * n);
     for (std::size_t i = 0; i < n; ++i) {
+      v.f[i] = norm(D, n, i);
       const surface::PointGeometry g = surface::point_geometry(jets[i]);
       v.H[i] = g.H;
       for (int d = 0; d < 3; ++d) v.normal[d * n + i] = g.n[d];
@@ -276,12 +207,12 @@ struct Run::Impl {
 
   /// The LDSM surface at its vertices: positions, |force| over the area weight, vertex normals.
   void ldsm_view(const std::vector<double>& X, const std::vector<double>& F, View& v) const {
-    v.X = X;
     const std::size_t n = X.size() / 3;
+    v.X = X;
     v.f.resize(n);
-    for (std::size_t i = 0; i < n; ++i) v.f[i] = std::sqrt(F[i] * F[i] + F[n + i] * F[n + i] + F[2 * n + i] * F[2 * n + i]) / W0[i];
+    for (std::size_t i = 0; i < n; ++i) v.f[i] = norm(F, n, i) / W0[i];
     v.H.assign(n, NAN);
-    v.normal = vertex_normals(eval->tris, X);
+    v.normal = surface::vertex_normals(eval->tris, X);
   }
 
   /// The accessors' copies of the run's series.
@@ -289,28 +220,20 @@ struct Run::Impl {
     const run::SeriesSet& s = loop->series();
     samples.clear();
     kept_views.clear();
-    phase_sums = Phases{};
+    seconds = 0;
     if (auto it = s.find("samples"); it != s.end())
       for (const std::vector<double>& r : it->second.rows)
         samples.push_back(Sample{r[0], {r[1], r[2], r[3]}, r[4], r[5], {r[6], r[7], r[8]}, r[9], r[10], r[11]});
     if (auto it = s.find("views"); it != s.end())
       for (const std::vector<double>& r : it->second.rows) {
-        View v;
-        v.t = r[0];
         const std::size_t n = std::size_t(r[1]);
         auto part = [&](std::size_t from, std::size_t count) {
           return std::vector<double>(r.begin() + std::ptrdiff_t(2 + from), r.begin() + std::ptrdiff_t(2 + from + count));
         };
-        v.X = part(0, 3 * n);
-        v.f = part(3 * n, n);
-        v.H = part(4 * n, n);
-        v.normal = part(5 * n, 3 * n);
-        kept_views.push_back(std::move(v));
+        kept_views.push_back(View{r[0], part(0, 3 * n), part(3 * n, n), part(4 * n, n), part(5 * n, 3 * n)});
       }
-    if (auto it = s.find("phases"); it != s.end() && !it->second.rows.empty()) {
-      const std::vector<double>& p = it->second.rows[0];
-      phase_sums = Phases{p[0], p[1], p[2], p[3], p[4]};
-    }
+    if (auto it = s.find("phases"); it != s.end() && !it->second.rows.empty())
+      for (double x : it->second.rows[0]) seconds += x;
   }
 };
 
@@ -330,15 +253,14 @@ std::string Run::failure() const { return impl_->loop->progress().stop_message; 
 bool Run::continued() const { return impl_->loop->continued(); }
 const std::vector<Sample>& Run::series() const { return impl_->samples; }
 const std::vector<View>& Run::views() const { return impl_->kept_views; }
-const Phases& Run::phases() const { return impl_->phase_sums; }
-int Run::steps_timed() const { return int(impl_->loop->progress().steps_timed); }
-const Model& Run::model() const { return impl_->m; }
-const std::vector<double>& Run::capillary_reference() const { return impl_->Zcap; }
-int Run::capillary_around() const { return impl_->around; }
-int Run::capillary_along() const { return impl_->along; }
-const std::vector<surface::Triangle>& Run::triangles() const {
-  return impl_->eval ? impl_->eval->tris : impl_->no_tris;
+double Run::seconds() const { return impl_->seconds; }
+double Run::seconds_per_step() const {
+  const long n = impl_->loop->progress().steps_timed;
+  return n > 0 ? impl_->seconds / double(n) : NAN;
 }
+const Model& Run::model() const { return impl_->m; }
+const surface::CylinderPoints& Run::capillary() const { return impl_->cap; }
+const std::vector<surface::Triangle>& Run::triangles() const { return impl_->eval ? impl_->eval->tris : impl_->no_tris; }
 
 std::vector<std::array<double, 2>> Run::profile_x(double x_probe) const {
   const Impl& s = *impl_;
@@ -356,15 +278,153 @@ std::vector<std::array<double, 2>> Run::profile_x(double x_probe) const {
     P[2 * nz + j] = -s.m.L + (j + 0.5) * h / 2;
   }
   dvec Pd(P.begin(), P.end()), Ud;
-  ib::Interaction probe({ib.fluid().operators().component_box(0), ib.fluid().operators().component_box(1),
-                         ib.fluid().operators().component_box(2)},
-                        s.m.kernel);
+  const MacOperators& ops = ib.fluid().operators();
+  ib::Interaction probe({ops.component_box(0), ops.component_box(1), ops.component_box(2)}, s.m.kernel);
   probe.interpolate(Pd, ib.fluid_state().u, Ud);
   std::vector<double> Uh(Ud.size());
   thrust::copy(Ud.begin(), Ud.end(), Uh.begin());
   std::vector<std::array<double, 2>> out;
   for (int j = 0; j < nz; ++j) out.push_back({P[2 * nz + j], Uh[j] + ucx});
   return out;
+}
+
+std::unique_ptr<Run> Runner::go(const Model& m, const chapter3::EvaluationSet* eval, const std::string& label) {
+  const std::string path = opt_.out_dir + "/run_" + label +
+                           (label.find("_eta") == std::string::npos ? "_eta" + to_text(m.eta) : "") + ".h5";
+  auto run = std::make_unique<Run>(m, eval, opt_.keeps_runs() ? path : std::string(), std::max(0.0, sitting_.remaining()));
+  if (run->continued()) study::log(opt_, label + ": resumed from " + path + " at step " + to_text(run->step()));
+  run->advance();
+  study::log(opt_, label + ": step " + to_text(run->step()) + " of " + to_text(m.steps) + ", " +
+                       to_text(run->seconds_per_step()) + " s per step" +
+                       (run->failure().empty() ? std::string() : ", STOPPED: " + run->failure()));
+  return run;
+}
+
+void write_snapshots(const Run& run, const std::string& dir, const std::string& label) {
+  namespace h5 = rbfib::io::h5;
+  std::filesystem::create_directories(dir);
+  // points n x 3 (um) and triangles of one surface into group g of file
+  auto write_surface = [](h5::Id& file, const char* g, const std::vector<double>& X,
+                          const std::vector<surface::Triangle>& tris) {
+    const std::size_t n = X.size() / 3;
+    std::vector<double> P(3 * n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int d = 0; d < 3; ++d) P[3 * i + d] = X[d * n + i] / um;
+    std::vector<long long> T;
+    for (const auto& t : tris) T.insert(T.end(), {(long long)t[0], (long long)t[1], (long long)t[2]});
+    h5::Id group = h5::create_group(file, g);
+    h5::write(group, "points", P.data(), {hsize_t(n), 3}, "um");
+    h5::write(group, "triangles", T.data(), {hsize_t(tris.size()), 3});
+    return group;
+  };
+  auto item = [](std::size_t rows, bool triple, const std::string& type, const std::string& path) {
+    return "<DataItem Dimensions=\"" + to_text(rows) + (triple ? " 3" : "") + "\" NumberType=\"" + type +
+           "\" Precision=\"8\" Format=\"HDF\">" + path + "</DataItem>";
+  };
+  auto grid = [&](const std::string& name, const std::string& file, std::size_t n, std::size_t nt) {
+    return "    <Grid Name=\"" + name + "\" GridType=\"Uniform\">\n     <Topology TopologyType=\"Triangle\" NumberOfElements=\"" +
+           to_text(nt) + "\">" + item(nt, true, "Int", file + ":/" + name + "/triangles") +
+           "</Topology>\n     <Geometry GeometryType=\"XYZ\">" + item(n, true, "Float", file + ":/" + name + "/points") +
+           "</Geometry>\n";
+  };
+  const surface::CylinderPoints& cap = run.capillary();
+  const std::vector<surface::Triangle> cap_tris = surface::cylinder_triangles(cap);
+  const std::string capfile = "capillary_eta" + to_text(run.model().eta) + ".h5";
+  {
+    h5::Id f = h5::create_file(dir + "/" + capfile);
+    write_surface(f, "capillary", cap.X, cap_tris);
+  }
+  std::ostringstream x;
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+    << "  <Grid Name=\"" << label << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  const auto& tris = run.triangles();
+  for (std::size_t s = 0; s < run.views().size(); ++s) {
+    const View& v = run.views()[s];
+    const std::size_t n = v.X.size() / 3;
+    const std::string file = label + "_" + to_text(s) + ".h5";
+    {
+      std::vector<double> f(n), H(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        f[i] = v.f[i] * 1e-3;
+        H[i] = v.H[i] * um;
+      }
+      h5::Id fh = h5::create_file(dir + "/" + file);
+      h5::attribute(fh, "t", v.t);
+      h5::Id g = write_surface(fh, "cell", v.X, tris);
+      h5::write(g, "force_density", f.data(), {hsize_t(n)}, "pN/um^2");
+      h5::write(g, "mean_curvature", H.data(), {hsize_t(n)}, "1/um");
+    }
+    x << "   <Grid Name=\"t" << s << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+      << "    <Time Value=\"" << v.t << "\"/>\n"
+      << grid("cell", file, n, tris.size())
+      << "     <Attribute Name=\"force_density_pN_per_um2\" AttributeType=\"Scalar\" Center=\"Node\">"
+      << item(n, false, "Float", file + ":/cell/force_density") << "</Attribute>\n"
+      << "     <Attribute Name=\"mean_curvature_per_um\" AttributeType=\"Scalar\" Center=\"Node\">"
+      << item(n, false, "Float", file + ":/cell/mean_curvature") << "</Attribute>\n"
+      << "    </Grid>\n"
+      << grid("capillary", capfile, std::size_t(cap.size()), cap_tris.size()) << "    </Grid>\n   </Grid>\n";
+  }
+  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  std::ofstream(dir + "/" + label + ".xmf") << x.str();
+}
+
+void record(study::Json& results, const std::string& id, const Run& run) {
+  study::RunProgress p;
+  p.finished = run.done();
+  p.t = run.step() * run.model().dt;
+  p.t_end = run.model().steps * run.model().dt;
+  p.steps = run.step();
+  p.seconds_per_step = run.seconds_per_step();
+  p.stopped = run.failure();
+  study::record_run(results, id, p);
+}
+
+void write_parameters(study::Json& P, const Model& base) {
+  P["units"] = "tables in um, s, pN (1 pN/um = 1e-3 dyn/cm, 1 pN um = 1e-11 erg); computed in CGS";
+  P["box_um"] = "[-12, 12]^3, periodic; steady Stokes (alpha = 0), exact inverse of the MAC operators";
+  P["eta"] = base.eta;
+  P["h_um"] = base.h() / um;
+  P["mu_cP"] = base.mu * 100;
+  P["background_force_pN_per_um3"] = base.f_in * 1e-5;  // 1 dyn/cm^3 = 1e-5 pN/um^3
+  P["capillary"] = "tethered nodes on r = 5 um, x in [-8, 8] um, k_teth = 2.45 pN/um per node (eq. 93), node "
+                   "spacing h/2; eqs. (94)-(95) for the constant velocity";
+  P["dt_s"] = base.dt;
+  P["t_end_s"] = base.dt * base.steps;
+  P["kernel"] = "peskin4";
+}
+
+EmptyFlow empty_capillary(Runner& runner, study::Json& results, Model m, Region region, const std::string& id) {
+  m.with_cell = false;
+  m.region = region;
+  m.steps = 100;  // the flow is steady within a few steps (column u_max_change_last_half)
+  m.record_every = 10;
+  m.view_every = m.steps;
+  const std::string label = std::string("empty_") + to_string(region) + "_eta" + to_text(m.eta);
+  const std::unique_ptr<Run> run = runner.go(m, nullptr, label);
+  record(results, id.empty() ? label : id, *run);
+  EmptyFlow e;
+  // the peak of the last step, and of the step at half the run
+  for (const Sample& q : run->series())
+    if (std::isfinite(q.u_max)) {
+      if (q.t <= 0.5 * m.dt * m.steps + 1e-12) e.u_half = q.u_max;
+      e.u_max = q.u_max;
+      e.u_zero_mean = q.u_max - q.uc[0];
+    }
+  if (!run->done() || !run->failure().empty()) e.u_max = e.u_zero_mean = NAN;
+  e.profile = run->profile_x(0.0);
+  double best = 1e300;
+  for (const auto& zu : e.profile)
+    if (std::abs(zu[0]) < best) {
+      best = std::abs(zu[0]);
+      e.u_axis = zu[1];
+    }
+  if (!run->series().empty()) e.cap_disp = run->series().back().cap_disp;
+  e.seconds = run->seconds();
+  e.h = m.h();
+  e.nodes = double(run->capillary().size());
+  study::log(runner.options(), label + ": u_max " + to_text(e.u_max / um) + " um/s with the wall at rest, " +
+                                   to_text(e.u_zero_mean / um) + " um/s in the zero-mean frame (paper 750)");
+  return e;
 }
 
 }  // namespace rbfib::capillary
