@@ -18,6 +18,7 @@
 #include "common/study.hpp"
 #include "poisson_peers.hpp"
 
+#include "rbfib/core/constants.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/fluid/navier_stokes.hpp"
 #include "rbfib/linalg/blas.hpp"
@@ -84,7 +85,7 @@ void bandwidths(const Options& opt, int threads, std::vector<GridSpec> grids, bo
 /// (top wall 12 mm/s) in the channel, plus a Gaussian force blob at the centre.
 void initial_flow(const NavierStokesSolver& ns, const MacGrid& grid, double U, FluidState& s, VectorField& f) {
   const bool channel = !grid.periodic(1);
-  const double L = 16 * units::um, k = 2 * 3.14159265358979323846 / L;
+  const double L = 16 * units::um, k = 2 * rbfib::pi / L;
   for (int a = 0; a < 3; ++a) {
     const Box box = ns.operators().component_box(a);
     s.u[a] = sample(box, [&](double x, double y, double) {

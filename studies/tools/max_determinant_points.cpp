@@ -7,6 +7,7 @@
 // Cost: about 3 m^3 flops per iteration (LU and inverse of the m x m harmonic matrix, m = (N+1)^2),
 // a few hundred iterations: seconds at N = 22, minutes at N = 44, most of an hour at N = 67 on two
 // cores.
+#include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/surface/harmonics.hpp"
 #include "rbfib/surface/point_sets.hpp"
@@ -67,8 +68,8 @@ int main(int argc, char** argv) {
             ", n = (N+1)^2 = " + to_text(sh_count(degree)),
         "generator: rbfib tool_max_determinant_points (L-BFGS on log|det Y| from the Bauer spiral)", line};
     std::snprintf(line, sizeof line, "eq. (45) weights: min %.6g, max %.6g (times n / 4 pi: %.4f .. %.4f), residual %.3g",
-                  wmin, wmax, wmin * sh_count(degree) / (4 * 3.14159265358979323846),
-                  wmax * sh_count(degree) / (4 * 3.14159265358979323846), w.residual);
+                  wmin, wmax, wmin * sh_count(degree) / (4 * rbfib::pi),
+                  wmax * sh_count(degree) / (4 * rbfib::pi), w.residual);
     header.push_back(line);
     header.push_back("format: one unit vector x y z per line");
     write_sphere_sites(out, r.sites, header);

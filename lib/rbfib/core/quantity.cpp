@@ -1,5 +1,7 @@
 #include "rbfib/core/quantity.hpp"
 
+#include "rbfib/core/constants.hpp"
+
 #include "rbfib/core/error.hpp"
 
 #include <cctype>
@@ -28,7 +30,7 @@ const std::map<std::string, Unit>& unit_table() {
       {"erg", {1.0, {2, 1, -2}}},  {"J", {1e7, {2, 1, -2}}},
       {"P", {1.0, {-1, 1, -1}}},   {"cP", {1e-2, {-1, 1, -1}}}, {"Pa", {10.0, {-1, 1, -2}}},
       {"Hz", {1.0, {0, 0, -1}}},
-      {"rad", {1.0, {0, 0, 0}}},   {"deg", {3.14159265358979323846 / 180, {0, 0, 0}}},
+      {"rad", {1.0, {0, 0, 0}}},   {"deg", {rbfib::pi / 180, {0, 0, 0}}},
   };
   return table;
 }
