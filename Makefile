@@ -18,13 +18,14 @@ DEBS += libthrust-dev libcub-dev
 endif
 NVCC := $(firstword $(wildcard /usr/local/cuda/bin/nvcc) $(shell command -v nvcc 2>/dev/null))
 
-.PHONY: help deps configure build test test-unit check-cuda build-cuda reproduce reproduce-% point-sets clean
+.PHONY: help deps configure build test test-unit check-cuda build-cuda gpu-check reproduce reproduce-% point-sets clean
 
 help:
 	@echo "make reproduce          every implemented study at SCALE=$(SCALE) -> reports/"
 	@echo "make reproduce-NAME     one study or chapter (appendixA, chapter2, ...), e.g. SCALE=full SITTING=3600"
 	@echo "make test               install deps, build, run every test (unit, harness, studies at quick scale)"
 	@echo "make build-cuda         configure and build the CUDA backend (nvcc)"
+	@echo "make gpu-check          on a machine with an NVIDIA GPU: CUDA build, unit tests on the device, GPU benchmarks -> reports/gpu"
 	@echo "make deps               install missing Debian packages"
 	@echo "make point-sets         regenerate reference/point_sets (maximal-determinant-like sites; ~1 h on 2 cores)"
 
@@ -58,6 +59,21 @@ check-cuda: deps
 build-cuda:
 	cmake -S . -B $(BUILD_CUDA) -DRBFIB_BACKEND=CUDA -DCMAKE_CUDA_COMPILER=$(NVCC) -DRBFIB_PYTHON=$(PY) $(CMAKE_ARGS) >/dev/null
 	cmake --build $(BUILD_CUDA) -j $(JOBS)
+
+# On a machine with an NVIDIA GPU, one call: the CUDA backend built, its unit tests run on the
+# device, then the benchmarks (bench_ib, bench_cells, bench_fluid) and the whole-blood step
+# (chapter4_cells) at quick scale, their reports in reports/gpu/<study> naming the GPU. Without a
+# GPU it says so and exits 2 (the CUDA build itself is compiled by `make test`).
+gpu-check: deps
+	@command -v nvidia-smi >/dev/null 2>&1 && nvidia-smi -L 2>/dev/null | grep -q "GPU" \
+	  || { echo "gpu-check: no NVIDIA GPU on this machine (nvidia-smi -L lists none)"; exit 2; }
+	@[ -n "$(NVCC)" ] || { echo "gpu-check: no nvcc on this machine (the CUDA toolkit is needed)"; exit 2; }
+	@nvidia-smi -L
+	$(MAKE) --no-print-directory build-cuda
+	cd $(BUILD_CUDA) && ctest --output-on-failure -j $(JOBS) -L unit
+	@failed=""; for s in bench_ib bench_cells bench_fluid chapter4_cells; do \
+	  $(PY) -m harness run $$s --build $(BUILD_CUDA) --reports reports/gpu --out runs/gpu || failed="$$failed $$s"; done; \
+	if [ -n "$$failed" ]; then echo "gpu-check: failed checks in:$$failed (reports/gpu)"; exit 1; fi
 
 test: build check-cuda
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

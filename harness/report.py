@@ -130,7 +130,8 @@ def render(meta, ref, results, outcome, out_dir, run_info):
              + (f", {differs} known difference{'s' if differs > 1 else ''} from the paper (see below)" if differs else "")
              + (f", {not_run} not run (each line says why: another scale, or a run not finished)." if not_run else "."))
     L.append("")
-    L.append(f"Ran on {prov.get('cpu', '?')} ({prov.get('threads', '?')} threads of {prov.get('hardware_threads', '?')}), "
+    L.append(f"Ran on {prov.get('cpu', '?')} ({prov.get('threads', '?')} threads of {prov.get('hardware_threads', '?')})"
+             + (f" with the GPU {prov['gpu']}" if prov.get('gpu') else "") + ", "
              f"backend {prov.get('backend', '?')}, {prov.get('compiler', '?')}, commit {run_info.get('commit', '?')}, "
              f"{run_info.get('date', '?')}; OMP_WAIT_POLICY={run_info.get('omp_wait_policy', 'unset')}; "
              f"OpenMP team {run_info.get('omp_team', 'not recorded')}; "

@@ -5,6 +5,9 @@
 #include "rbfib/core/units.hpp"
 
 #include <CLI/CLI.hpp>
+#if defined(RBFIB_BACKEND_CUDA)
+#include <cuda_runtime.h>
+#endif
 #include <omp.h>
 
 #include <algorithm>
@@ -77,6 +80,18 @@ Json table(const std::vector<std::string>& columns, const std::vector<std::strin
   return t;
 }
 
+/// The GPU the CUDA backend runs on ("" on the CPU backend).
+static std::string gpu_name() {
+#if defined(RBFIB_BACKEND_CUDA)
+  int device = 0;
+  cudaDeviceProp props;
+  if (cudaGetDevice(&device) == cudaSuccess && cudaGetDeviceProperties(&props, device) == cudaSuccess) return props.name;
+  return "unknown (cudaGetDeviceProperties failed)";
+#else
+  return "";
+#endif
+}
+
 Json make_results(const Options& opt) {
   Json r = Json::object();
   r["study"] = opt.name;
@@ -90,6 +105,7 @@ Json make_results(const Options& opt) {
   p["backend"] = backend_name();
   p["threads"] = omp_get_max_threads();
   p["cpu"] = cpu_model();
+  if (const std::string gpu = gpu_name(); !gpu.empty()) p["gpu"] = gpu;
   p["hardware_threads"] = int(std::thread::hardware_concurrency());
   return r;
 }
