@@ -26,6 +26,7 @@
 #include "rbfib/core/units.hpp"
 #include "rbfib/io/checkpoint.hpp"
 #include "rbfib/run/run.hpp"
+#include "rbfib/scene/scene.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -78,48 +79,30 @@ struct Setup {
   int measure_every, checkpoint_every;  // steps (checkpoints: 0 = none, a run that is not resumable)
 };
 
-struct Placed {
-  std::array<Vec3, 2> center;
-};
-
-/// Centres on the line x = z, y = 8 um with the planes supporting the two hulls normal to d 4h
-/// apart, the gap centred on the box centre (for these orientations, the gap between the hulls).
-Placed place(const Orientation& o, const Setup& s) {
-  const double h1 = cells::support(kCell, rotation_matrix(o.pose[0]), kLine);
-  const double h2 = cells::support(kCell, rotation_matrix(o.pose[1]), {-kLine[0], -kLine[1], -kLine[2]});
-  Placed p;
-  for (int a = 0; a < 3; ++a) {
-    p.center[0][a] = kBox / 2 - (2 * s.h + h1) * kLine[a];
-    p.center[1][a] = kBox / 2 + (2 * s.h + h2) * kLine[a];
-  }
-  return p;
-}
-
-/// The run's scene (docs/scenes.md), values in CGS to 17 digits so that it reads back exactly.
-std::string scene_text(const Orientation& o, const Setup& s, const Placed& p, double force) {
-  auto triple = [](const Vec3& v, const std::string& unit) {
-    return "[" + to_text(v[0]) + " " + unit + ", " + to_text(v[1]) + " " + unit + ", " + to_text(v[2]) + " " + unit + "]";
-  };
-  const std::string L = to_text(kBox) + " cm";
-  std::string t = "# chapter5_collision: two red cells pushed together, Fig. 5.3 (" + o.id + ": " + o.what + ")\n"
-                  "name: collision_" + o.id + "\n"
-                  "domain:\n  size: [" + L + ", " + L + ", " + L + "]\n  periodic: [x, z]\n"
-                  "  walls:\n    y: {lower: [0 cm/s, 0 cm/s, 0 cm/s], upper: [0 cm/s, 0 cm/s, 0 cm/s]}\n"
-                  "fluid: {density: 1 g/cm^3, viscosity: " + to_text(s.mu) + " P}\n"
-                  "grid: {h: " + to_text(s.h) + " cm}\n"
-                  "time: {integrator: peskin_two_stage, dt: " + to_text(s.dt) + " s, end: " + to_text(s.t_end) + " s}\n"
-                  "ib: {kernel: cosine4}\n"
-                  "cell_types:\n  - {name: red cell, preset: red_cell, data_sites: " + to_text(s.n_data) +
-                  ", sample_sites: " + to_text(s.n_sample) + "}\n"
-                  "cells:\n";
+/// The run's scene (docs/scenes.md). Centres on the line x = z, y = 8 um with the planes supporting
+/// the two hulls normal to d 4h apart, the gap centred on the box centre (for these orientations,
+/// the gap between the hulls); each cell pushed into the gap by `force` (dyn).
+scene::Scene collision_scene(const Orientation& o, const Setup& s, double force) {
+  scene::Scene sc;
+  sc.name = "collision_" + o.id;
+  sc.grid.length = {kBox, kBox, kBox};
+  const int n = int(std::lround(kBox / s.h));
+  sc.grid.cells = {n, n, n};
+  sc.grid.lower[1] = sc.grid.upper[1] = MacBoundary::dirichlet;  // walls at rest across y
+  sc.fluid = {1, s.mu};                                           // g/cm^3, P
+  sc.fluid_options.integrator = TimeIntegrator::peskin_two_stage;
+  sc.fluid_options.dt = s.dt;
+  sc.t_end = s.t_end;
+  sc.ib.kernel = ib::Kernel::cosine4;
+  sc.types = {scene::cell_type("red cell", "red_cell", s.n_data, s.n_sample)};
   for (int c = 0; c < 2; ++c) {
-    const double sign = c == 0 ? 1 : -1;  // into the gap
-    const Vec3 F = {sign * force * kLine[0], 0, sign * force * kLine[2]};
-    t += "  - {type: red cell, center: " + triple(p.center[c], "cm") + ", axis: [" + to_text(o.pose[c].axis[0]) + ", " +
-         to_text(o.pose[c].axis[1]) + ", " + to_text(o.pose[c].axis[2]) + "], angle: " + to_text(o.pose[c].angle) +
-         " rad, force: " + triple(F, "dyn") + "}\n";
+    const double sign = c == 0 ? 1 : -1;  // toward the gap
+    const double support = cells::support(kCell, rotation_matrix(o.pose[c]), {sign * kLine[0], sign * kLine[1], sign * kLine[2]});
+    Vec3 center;
+    for (int a = 0; a < 3; ++a) center[a] = kBox / 2 - sign * (2 * s.h + support) * kLine[a];
+    sc.cells.push_back({"red cell", {center, o.pose[c].axis, o.pose[c].angle}, {sign * force * kLine[0], 0, sign * force * kLine[2]}});
   }
-  return t;
+  return sc;
 }
 
 // ---- Measurements: the run's series, kept in its checkpoint --------------------------------------
@@ -211,8 +194,8 @@ Outcome run_orientation(const Orientation& o, const Setup& s, double figure_time
   const bool resumable = s.checkpoint_every > 0, saved = resumable && std::filesystem::exists(checkpoint);
   if (!resumable) std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  const Placed p = place(o, s);
-  const std::string text = scene_text(o, s, p, kFict * A0);
+  const std::string text = scene::to_yaml(collision_scene(o, s, kFict * A0),
+                                          "chapter5_collision: two red cells pushed together, Fig. 5.3 (" + o.id + ": " + o.what + ")");
   std::ofstream(dir + "/scene.yaml") << text;
   if (saved && io::read_checkpoint(checkpoint).scene_yaml != text)
     throw InputError(checkpoint, "its scene", "differs from this driver's scene for " + who + ": remove " + dir + " to start afresh");

@@ -28,6 +28,7 @@
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/constants.hpp"
 #include "rbfib/core/units.hpp"
+#include "rbfib/scene/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -48,24 +49,6 @@ struct Setup {
   int n_data = 0, n_sample = 0;
   bool full = false;
 };
-
-/// The scene of one run, in CGS to 17 digits so that it reads back exactly (docs/scenes.md); kept
-/// beside the results, where `rbfib run` reruns it.
-std::string scene_text(const Setup& s, double rate, double mu, double dt, double t_end) {
-  const double L = 16 * units::um, ub = rate * L / 2, flat = 1 - pi / 2;  // lie flat (short axis y), then 1 rad
-  const std::string len = to_text(L) + " cm", c = to_text(L / 2) + " cm";
-  return "# chapter5_shear: one red cell in shear " + to_text(rate) + "/s (Sec. 5.1.2, Fig. 5.2)\n"
-         "name: chapter5_shear\n"
-         "domain:\n  size: [" + len + ", " + len + ", " + len + "]\n  periodic: [x, z]\n"
-         "  walls:\n    y: {lower: [0 cm/s, 0 cm/s, " + to_text(-ub) + " cm/s], upper: [0 cm/s, 0 cm/s, " + to_text(ub) + " cm/s]}\n"
-         "  initial_flow: shear\n"
-         "fluid: {density: 1 g/cm^3, viscosity: " + to_text(mu) + " P}\n"
-         "grid: {cells: [" + to_text(s.cells) + ", " + to_text(s.cells) + ", " + to_text(s.cells) + "]}\n"
-         "time: {integrator: backward_forward_euler, dt: " + to_text(dt) + " s, end: " + to_text(t_end) + " s}\n"
-         "ib: {kernel: bspline3}\n"
-         "cell_types:\n  - {name: red cell, preset: red_cell, data_sites: " + to_text(s.n_data) + ", sample_sites: " + to_text(s.n_sample) + "}\n"
-         "cells:\n  - {type: red cell, center: [" + c + ", " + c + ", " + c + "], axis: [1, 0, 0], angle: " + to_text(flat) + " rad}\n";
-}
 
 /// A sample (a row of the run's series): t, the volume at the last step's force positions (0 before
 /// a step), the inclination and Taylor deformation of the y-z profile (Fig. 5.2's view: z right, y up),
@@ -91,6 +74,27 @@ struct Case {
   double rate, mu, dt, t_end;
   double first_panel;  // Fig. 5.2's first panel (gdot t)
 };
+
+/// The scene of one run (docs/scenes.md), kept beside the results, where `rbfib run` reruns it.
+scene::Scene shear_scene(const Setup& s, const Case& c) {
+  const double L = 16 * units::um, ub = c.rate * L / 2;
+  scene::Scene sc;
+  sc.name = "chapter5_shear";
+  sc.grid.length = {L, L, L};
+  sc.grid.cells = {s.cells, s.cells, s.cells};
+  sc.grid.lower[1] = sc.grid.upper[1] = MacBoundary::dirichlet;  // walls across y moving at -+u_b along z
+  sc.walls[1][0].velocity = {0, 0, -ub};
+  sc.walls[1][1].velocity = {0, 0, ub};
+  sc.initial_shear = true;
+  sc.fluid = {1, c.mu};  // g/cm^3, P
+  sc.fluid_options.integrator = TimeIntegrator::backward_forward_euler;
+  sc.fluid_options.dt = c.dt;
+  sc.t_end = c.t_end;
+  sc.ib.kernel = ib::Kernel::bspline3;
+  sc.types = {scene::cell_type("red cell", "red_cell", s.n_data, s.n_sample)};
+  sc.cells = {{"red cell", {{L / 2, L / 2, L / 2}, {1, 0, 0}, 1 - pi / 2}}};  // lying flat (short axis y), then 1 rad about x
+  return sc;
+}
 
 struct Run {
   Case c;
@@ -134,7 +138,8 @@ Run shear_run(const Setup& s, const Case& c, int samples, const st::Options& opt
         for (long i = 0; i < n; ++i) o.rows.push_back({X[std::size_t(2 * n + i)] - c[2], X[std::size_t(n + i)] - c[1]});
       }
   };
-  Run r{c, st::run_scene(scene_text(s, c.rate, c.mu, c.dt, c.t_end), tag, every, s.full, opt, hooks, max_seconds), {}};
+  const std::string text = scene::to_yaml(shear_scene(s, c), "chapter5_shear: one red cell in shear " + to_text(c.rate) + "/s (Sec. 5.1.2, Fig. 5.2)");
+  Run r{c, st::run_scene(text, tag, every, s.full, opt, hooks, max_seconds), {}};
   const auto it = r.run.series.find("snapshot");
   if (it != r.run.series.end() && it->second.rows.size() == 2 && snapshot_step >= 0 && r.run.steps >= snapshot_step) r.snapshot = it->second.rows[1];
   return r;
