@@ -632,9 +632,7 @@ std::vector<std::string> check_contacts(const Scene& s, const StartingState* sta
     return o.str();
   };
   std::vector<Placed> cells;
-  auto bound = [](Placed& p) {  // the bounding sphere about the centroid of the data sites
-    for (index_t i = 0; i < p.n; ++i)
-      for (int d = 0; d < 3; ++d) p.center[d] += p.X[std::size_t(d * p.n + i)] / double(p.n);
+  auto bound = [](Placed& p) {  // the radius of the bounding sphere about p.center
     for (index_t i = 0; i < p.n; ++i) {
       double r2 = 0;
       for (int d = 0; d < 3; ++d) r2 += std::pow(p.X[std::size_t(d * p.n + i)] - p.center[d], 2);
@@ -643,7 +641,8 @@ std::vector<std::string> check_contacts(const Scene& s, const StartingState* sta
   };
   if (start)
     for (const std::string& type : s.start.keep) {
-      const host_vector<double> state(kept_batch(*start, type).begin(), kept_batch(*start, type).end());
+      const dvec& kept = kept_batch(*start, type);
+      const host_vector<double> state(kept.begin(), kept.end());
       const index_t n = index_t(reference.at(type).size() / 3), N = index_t(state.size()) / (6 * n);
       for (index_t c = 0; c < N; ++c) {
         Placed p;
@@ -654,6 +653,8 @@ std::vector<std::string> check_contacts(const Scene& s, const StartingState* sta
         for (int d = 0; d < 3; ++d)  // column d N + c of the n x 6N state (docs/math.md)
           std::copy_n(state.begin() + std::ptrdiff_t((d * N + c) * n), n, p.X.begin() + std::ptrdiff_t(d * n));
         p.tris = &tris.at(type);
+        for (index_t i = 0; i < n; ++i)  // about the centroid of its data sites
+          for (int d = 0; d < 3; ++d) p.center[d] += p.X[std::size_t(d * n + i)] / double(n);
         bound(p);
         cells.push_back(std::move(p));
       }
@@ -667,11 +668,7 @@ std::vector<std::string> check_contacts(const Scene& s, const StartingState* sta
     p.X = cells::placed(ref, p.n, s.cells[c].placement, p.who);
     p.tris = &tris.at(s.cells[c].type);
     p.center = s.cells[c].placement.center;
-    for (index_t i = 0; i < p.n; ++i) {  // (the reader has checked that the cell lies between the walls)
-      double r2 = 0;
-      for (int d = 0; d < 3; ++d) r2 += std::pow(p.X[std::size_t(d * p.n + i)] - p.center[d], 2);
-      p.radius = std::max(p.radius, std::sqrt(r2));
-    }
+    bound(p);  // (the reader has checked that the cell lies between the walls)
     cells.push_back(std::move(p));
   }
   const surface::PeriodicBox box{g.length, {g.periodic(0), g.periodic(1), g.periodic(2)}};
