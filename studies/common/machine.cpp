@@ -1,5 +1,7 @@
 #include "common/machine.hpp"
 
+#include "rbfib/linalg/blas.hpp"
+
 #include "common/force_call.hpp"
 #include "common/study.hpp"
 
@@ -32,12 +34,6 @@ double load_average() {
   return l;
 }
 
-double max_abs(const dvec& a) {
-  double m = 0;
-  for (double x : host_vector<double>(a)) m = std::max(m, std::abs(x));
-  return m;
-}
-
 double max_abs_diff(const dvec& a, const dvec& b) {
   const host_vector<double> x(a), y(b);
   double d = 0;
@@ -49,7 +45,7 @@ double max_rel_diff(const std::vector<const dvec*>& a, const std::vector<const d
   double d = 0, m = 0;
   for (std::size_t c = 0; c < a.size(); ++c) {
     d = std::max(d, max_abs_diff(*a[c], *b[c]));
-    m = std::max(m, max_abs(*b[c]));
+    m = std::max(m, blas::norm_inf(*b[c]));
   }
   return m > 0 ? d / m : d;
 }

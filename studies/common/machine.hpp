@@ -26,9 +26,6 @@ void record_wait_policy(Json& parameters);
 /// The one-minute load average of /proc/loadavg (NaN where unreadable): this machine is shared.
 double load_average();
 
-/// max_i |a_i|.
-double max_abs(const dvec& a);
-
 /// max_i |a_i - b_i|.
 double max_abs_diff(const dvec& a, const dvec& b);
 
