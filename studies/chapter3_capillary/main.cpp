@@ -1,7 +1,7 @@
 // Chapter 3 capillary flow (the JCP 2018 paper, Sec. 5.1, Figs. 6-9): a red cell (eq. 92) carried
 // through a tethered capillary (eqs. 93-95) by a background force, in steady Stokes flow on a
 // periodic 24 um box, forces by SHVD (m = 400 and 625 interpolation sites, n evaluation sites) or
-// LDSM; bending k_bend = 0, 0.1, 1 pN um (eq. 79). The model and the time update: rbfib/models/capillary.hpp;
+// LDSM; bending k_bend = 0, 0.1, 1 pN um (eq. 79). The model and the time update: common/capillary.hpp;
 // the empty capillary's peak speed against Poiseuille on three grids: chapter3_capillary_flow.
 //
 // Reproduces (and measures what the paper only shows):

@@ -4,7 +4,7 @@
 // the capillary's frame (u_c of eq. 95 added, the wall at rest) and in the solver's (the periodic
 // solution with zero mean velocity), for two readings of "inside the capillary" (the cylinder
 // through the box, or the tethered segment only) and on three grids: table capillary_flow, and the
-// profile u_x(z) through (0, 0) against Poiseuille's (figure profile). The model: rbfib/models/capillary.hpp.
+// profile u_x(z) through (0, 0) against Poiseuille's (figure profile). The model: common/capillary.hpp.
 //
 // Scales. Quick (CI): eta = 32, 48, 64 (and the segment reading on 48). Full: eta = 64, 96, 128
 // (the segment reading on 64). 100 steps of dt = 1e-4 s each: the flow is steady within a few.

@@ -1,6 +1,6 @@
 // Chapter 3 dynamic test (the JCP 2018 paper, Sec. 4.2, with the time update of Sec. 3.3): the
 // ellipsoid of eq. (88) and the perturbed ellipsoid of eq. (89) relaxing to the unit sphere in
-// periodic Stokes flow, SHVD against LDSM (rbfib/models/shell_relaxation.hpp). Dimensionless.
+// periodic Stokes flow, SHVD against LDSM (common/chapter3_relaxation.hpp). Dimensionless.
 //
 // Reproduces:
 //   Fig. 4  both shapes on eta = 32 with m = 225: max_i |X_i - c| - 1 (and the min) against time;

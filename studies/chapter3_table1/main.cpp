@@ -1,5 +1,5 @@
 // Chapter 3, Table 1 (the JCP 2018 paper, Sec. 4.2): the SHVD / LDSM wall-time ratio of the
-// ellipsoidal contraction of the dynamic test (rbfib/models/shell_relaxation.hpp: eq. 88, dt =
+// ellipsoidal contraction of the dynamic test (common/chapter3_relaxation.hpp: eq. 88, dt =
 // 1/(2 eta), n = 2 eta^2 + 1) for m = 64 and 225, with each method's time split into forces,
 // spreading, Stokes solve, interpolation and update. The three runs of a grid (LDSM, SHVD m = 64,
 // SHVD m = 225) advance in lockstep, one step of each in turn, so that a change of load on the
