@@ -216,7 +216,7 @@ int main(int argc, char** argv) {
     st::SceneRunHooks hooks;
     hooks.sample = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib); };
     const std::string text = scene::to_yaml(platelets_scene(s), "chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)");
-    const st::SceneRun run = st::run_scene(text, "platelets", int(std::max(1L, total / 400)), opt.keeps_runs(), opt, hooks, st::Sitting(opt).remaining());
+    const st::SceneRun run = st::run_scene(text, "platelets", run::Cadence{std::max(1L, total / 400)}, opt.keeps_runs(), opt, hooks, st::Sitting(opt).remaining());
 
     std::vector<double> t;
     double endothelium_max = 0;

@@ -6,7 +6,8 @@
 // u = gdot (y - 8 um) e_z; the cell at the centre, lying flat and rotated 1 rad about x, the
 // vorticity axis, so that it moves in the y-z shear plane; B3 kernel, backward-forward Euler, the
 // seed's coupling (a)-(g).
-//   full:  h = 0.4 um, n_d = 625, n_s = 2,500, dt = 0.1 us (the seed's), windows long enough for
+//   full:  h = 0.4 um, n_d = 625, n_s = 2,500, the seed's adaptive step (dt = 2^k x 50 ns up to
+//          800 ns by eq. 5.4, sim::AdaptiveStep; the seed's runs used 0.1 us), windows long enough for
 //          Fig. 5.2's periods: 0.5 s at 50/s (strain 25), 70 ms at 1000/s, 1 cP (strain 70);
 //   quick: h = 0.8 um, n_d = 400, n_s = 1,600, windows of a strain of 0.5-8: rates, not periods.
 // Seen as in Fig. 5.2, flow to the right (z) and y up; angles are counterclockwise from the flow
@@ -53,26 +54,29 @@ struct Setup {
 /// A sample (a row of the run's series): t, the volume at the last step's force positions (0 before
 /// a step), the inclination and Taylor deformation of the y-z profile (Fig. 5.2's view: z right, y up),
 /// ||f||_inf of the last step, the shape (common/cell_shape.hpp: centre, axes, extents), the tracked
-/// data site (cm).
-enum Column : std::size_t { kT, kVolume, kInclination, kTaylor, kForce, kCenter, kAxes = 8, kExtent = 17, kMaterial = 20 };
+/// data site (cm), the last step's dt (s; 0 before a step).
+enum Column : std::size_t { kT, kVolume, kInclination, kTaylor, kForce, kCenter, kAxes = 8, kExtent = 17, kMaterial = 20, kDt = 23 };
 
-std::vector<double> sample(const sim::ImmersedBoundary& ib, long material, double force_density) {
+std::vector<double> sample(const sim::ImmersedBoundary& ib, long material, const sim::IbStepReport* rep) {
   const std::vector<double> X = ib.batch(0).positions_host();
   const long n = ib.batch(0).type().n_data();
   const st::CellShape s = st::cell_shape(X, n, 1, 0);
   const cells::Profile p = cells::profile(X, n, s.center, 2, 1);
-  std::vector<double> r{ib.time(), ib.diagnostics(0).volume.empty() ? 0 : ib.diagnostics(0).volume[0], p.inclination, p.taylor(), force_density};
+  std::vector<double> r{ib.time(), ib.diagnostics(0).volume.empty() ? 0 : ib.diagnostics(0).volume[0], p.inclination, p.taylor(),
+                        rep ? rep->max_force_density : 0};
   r.insert(r.end(), s.center.begin(), s.center.end());
   for (const Vec3& a : s.axes) r.insert(r.end(), a.begin(), a.end());
   r.insert(r.end(), s.extent.begin(), s.extent.end());
   for (int d = 0; d < 3; ++d) r.push_back(X[std::size_t(d * n + material)]);
+  r.push_back(rep ? rep->dt : 0);
   return r;
 }
 
 struct Case {
   std::string id;  // the run's name in results["runs"] and the suffix of its values
-  double rate, mu, dt, t_end;
+  double rate, mu, dt, t_end;  // dt: the fixed step, or with the ladder its lowest rung dt_min
   double first_panel;  // Fig. 5.2's first panel (gdot t)
+  int ladder = 0;      // > 0: the seed's adaptive step, dt = 2^k dt for k = 0..ladder by eq. 5.4
 };
 
 /// The scene of one run (docs/scenes.md), kept beside the results, where `rbfib run` reruns it.
@@ -90,6 +94,7 @@ scene::Scene shear_scene(const Setup& s, const Case& c) {
   sc.fluid_options.integrator = TimeIntegrator::backward_forward_euler;
   sc.fluid_options.dt = c.dt;
   sc.t_end = c.t_end;
+  if (c.ladder > 0) sc.ib.adaptive = {true, c.dt, c.ladder, 16};
   sc.ib.kernel = ib::Kernel::bspline3;
   sc.types = {scene::cell_type("red cell", "red_cell", s.n_data, s.n_sample)};
   sc.cells = {{"red cell", {{L / 2, L / 2, L / 2}, {1, 0, 0}, 1 - pi / 2}}};  // lying flat (short axis y), then 1 rad about x
@@ -100,8 +105,8 @@ struct Run {
   Case c;
   st::SceneRun run;              // its samples and series, steps, eq. 5.4's stop
   std::vector<double> snapshot;  // the data sites at t_snapshot (empty when not asked or not reached)
-  st::RunProgress progress() const {  // the time reached: steps of the fixed dt (samples are sparser)
-    return {run.finished, double(run.steps) * c.dt, c.t_end, run.steps, run.seconds_per_step(), run.stopped};
+  st::RunProgress progress() const {  // the time reached: steps of the fixed dt (samples are sparser), or the last sample's
+    return c.ladder > 0 ? run.progress(c.t_end) : st::RunProgress{run.finished, double(run.steps) * c.dt, c.t_end, run.steps, run.seconds_per_step(), run.stopped};
   }
 };
 
@@ -109,13 +114,15 @@ struct Run {
 /// Fig. 5.2's outlines (series "outline_<k>": [t], then [z, y] of each data site about the centre)
 /// at the start, 1/3, 2/3 and the end, and the data sites at t_snapshot (if > 0; series
 /// "snapshot"), are kept with the run as they are taken, so that a continued run has them all.
+/// Moments are counted in ticks of c.dt (with the ladder every step is a whole number of them):
+/// each is taken at the first step that reaches it.
 Run shear_run(const Setup& s, const Case& c, int samples, const st::Options& opt, const std::string& prefix, double max_seconds,
               double t_snapshot) {
   char mu_text[32];
   std::snprintf(mu_text, sizeof mu_text, "%g", c.mu / cP);
   const std::string tag = prefix + "rate" + to_text(std::lround(c.rate)) + "_mu" + mu_text + "cP_dt" + to_text(std::lround(c.dt / units::ns)) + "ns";
-  const long total = std::lround(c.t_end / c.dt), snapshot_step = t_snapshot > 0 ? std::lround(t_snapshot / c.dt) : -1;
-  const int every = std::max(1, int(std::lround(c.t_end / c.dt / samples)));
+  const long total = std::lround(c.t_end / c.dt), snapshot_tick = t_snapshot > 0 ? std::lround(t_snapshot / c.dt) : -1;
+  const run::Cadence every = c.ladder > 0 ? run::Cadence{0, c.t_end / samples} : run::Cadence{std::max(1L, std::lround(c.t_end / c.dt / samples))};
   long material = 0;
   st::SceneRunHooks hooks;
   hooks.at_start = [&](const sim::ImmersedBoundary& ib) {  // the rim site farthest along the profile's long axis e_x x p
@@ -124,13 +131,13 @@ Run shear_run(const Setup& s, const Case& c, int samples, const st::Options& opt
     material = cells::farthest_along(X, ib.batch(0).type().n_data(), s0.center, {0, -s0.axes[0][2], s0.axes[0][1]});
   };
   hooks.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport* rep) {
-    return sample(ib, material, rep ? rep->max_force_density : 0);
+    return sample(ib, material, rep);
   };
   hooks.record = [&](const sim::ImmersedBoundary& ib, run::SeriesSet& series) {
-    const long step = ib.step_count(), n = ib.batch(0).type().n_data();
-    if (step == snapshot_step) series["snapshot"].rows = {{ib.time()}, ib.batch(0).positions_host()};
+    const long tick = std::lround(ib.time() / c.dt), n = ib.batch(0).type().n_data();
+    if (snapshot_tick >= 0 && tick >= snapshot_tick && !series.count("snapshot")) series["snapshot"].rows = {{ib.time()}, ib.batch(0).positions_host()};
     for (int k = 0; k < 4; ++k)
-      if (step == total * k / 3) {
+      if (tick >= total * k / 3 && !series.count("outline_" + std::to_string(k))) {
         const std::vector<double> X = ib.batch(0).positions_host();
         const Vec3 c = st::cell_shape(X, n, 1, 0).center;
         run::Series& o = series["outline_" + std::to_string(k)];
@@ -141,7 +148,7 @@ Run shear_run(const Setup& s, const Case& c, int samples, const st::Options& opt
   const std::string text = scene::to_yaml(shear_scene(s, c), "chapter5_shear: one red cell in shear " + to_text(c.rate) + "/s (Sec. 5.1.2, Fig. 5.2)");
   Run r{c, st::run_scene(text, tag, every, s.full, opt, hooks, max_seconds), {}};
   const auto it = r.run.series.find("snapshot");
-  if (it != r.run.series.end() && it->second.rows.size() == 2 && snapshot_step >= 0 && r.run.steps >= snapshot_step) r.snapshot = it->second.rows[1];
+  if (it != r.run.series.end() && it->second.rows.size() == 2) r.snapshot = it->second.rows[1];
   return r;
 }
 
@@ -212,11 +219,11 @@ struct Tables {
   Json orientation = st::table({"rate_1_s", "mu_cP", "t_ms", "strain", "axis_deg", "jeffery_axis_deg", "inclination_deg", "material_deg",
                                 "taylor_D", "force_density"},
                                {"1/s", "cP", "ms", "", "deg", "deg", "deg", "deg", "", "dyn/cm^3"});
-  Json summary = st::table({"rate_1_s", "mu_cP", "capillary", "dt_us", "t_end_ms", "steps", "seconds_per_step", "aspect_ratio",
+  Json summary = st::table({"rate_1_s", "mu_cP", "capillary", "dt_us", "dt_top_us", "dt_mean_us", "t_end_ms", "steps", "seconds_per_step", "aspect_ratio",
                             "body_rate_over_gdot", "jeffery_rate_over_gdot", "body_over_jeffery", "material_rate_over_gdot", "material_turn_deg",
                             "first_panel_strain", "period_strain", "period_rate_over_gdot", "jeffery_period_strain", "inclination_end_deg",
                             "inclination_mean_deg", "taylor_D_end", "volume_change_rel", "force_growth", "stopped_ms"},
-                           {"1/s", "cP", "", "us", "ms", "", "s", "", "", "", "", "", "deg", "", "", "", "", "deg", "deg", "", "", "", "ms"});
+                           {"1/s", "cP", "", "us", "us", "us", "ms", "", "s", "", "", "", "", "", "deg", "", "", "", "", "deg", "deg", "", "", "", "ms"});
   Json outlines = st::table({"rate_1_s", "mu_cP", "t_ms", "z_um", "y_um"}, {"1/s", "cP", "ms", "um", "um"});
 };
 
@@ -231,8 +238,9 @@ void describe(Json& P, const Setup& s, const std::vector<Case>& cases) {
   P["initial_orientation"] = "lying flat (short axis y), rotated 1 rad about x (the vorticity axis), at the box centre";
   Json::Array runs_text;
   for (const Case& c : cases)
-    runs_text.push_back(Json(c.id + ": " + to_text(c.rate) + "/s at " + to_text(std::round(c.mu / cP * 10) / 10) + " cP, dt = " + to_text(c.dt / us) +
-                             " us to " + to_text(c.t_end / ms) + " ms (strain " + to_text(c.rate * c.t_end) + ")"));
+    runs_text.push_back(Json(c.id + ": " + to_text(c.rate) + "/s at " + to_text(std::round(c.mu / cP * 10) / 10) + " cP, dt = " +
+                             (c.ladder > 0 ? "2^k x " + to_text(c.dt / us) + " us (k = 0.." + to_text(c.ladder) + ", eq. 5.4)" : to_text(c.dt / us) + " us") +
+                             " to " + to_text(c.t_end / ms) + " ms (strain " + to_text(c.rate * c.t_end) + ")"));
   P["runs"] = runs_text;
 }
 
@@ -246,7 +254,9 @@ void tabulate(Json& results, Tables& T, const Run& r, const st::Options& opt) {
                                     a.material[i] * deg, a.taylor[i], a.force[i]}));
   // Capillary number mu gdot R / E_s with the Skalak shear modulus (Sec. 2.2) and R = 3.91 um.
   const double capillary = c.mu * c.rate * cells::seed::red_cell_radius / cells::seed::red_cell_E;
-  T.summary["rows"].push(row({c.rate, c.mu / cP, capillary, c.dt / us, r.run.samples.back()[kT] / ms, double(r.run.steps), r.run.seconds_per_step(),
+  const double t_reached = r.run.samples.back()[kT], top = c.dt * double(1 << c.ladder);  // dt_us: the step, or the ladder's lowest rung
+  T.summary["rows"].push(row({c.rate, c.mu / cP, capillary, c.dt / us, top / us, r.run.steps > 0 ? t_reached / double(r.run.steps) / us : NAN,
+                              t_reached / ms, double(r.run.steps), r.run.seconds_per_step(),
                               a.aspect, a.body_rate, a.jeffery_rate, a.body_rate / a.jeffery_rate, a.material_rate, a.material_turn * deg,
                               c.first_panel, a.period, 2 * pi / a.period, a.jeffery_period, a.inclination.back() * deg, a.inclination_mean * deg,
                               a.taylor.back(), a.volume_change, a.force_growth,
@@ -324,15 +334,18 @@ int main(int argc, char** argv) {
     // takes a strain of 21 (0.42 s), Fig. 5.2(b)'s revolution 19 to 47; 70 ms leaves room for a
     // period up to a strain of 51. Quick windows measure rates; at quick scale 1000/s at 1 cP needs
     // a quarter of the others' step (see the dt scan). Full scale runs the longest, 50/s, last.
-    const std::vector<Case> cases = full ? std::vector<Case>{{"1000_1cP", 1000, 1 * cP, 0.1 * us, 70 * ms, 19},
-                                                             {"1000_0p1cP", 1000, 0.1 * cP, 0.1 * us, 30 * ms, 19},
-                                                             {"50_1cP", 50, 1 * cP, 0.1 * us, 500 * ms, 0}}
+    // Full scale climbs the seed's ladder, 50 ns to 800 ns by eq. 5.4 (the dt scan finds 0.8 us
+    // stable); quick scale takes the largest stable fixed step.
+    const std::vector<Case> cases = full ? std::vector<Case>{{"1000_1cP", 1000, 1 * cP, 0.05 * us, 70 * ms, 19, 4},
+                                                             {"1000_0p1cP", 1000, 0.1 * cP, 0.05 * us, 30 * ms, 19, 4},
+                                                             {"50_1cP", 50, 1 * cP, 0.05 * us, 500 * ms, 0, 4}}
                                          : std::vector<Case>{{"50_1cP", 50, 1 * cP, 3.2 * us, 10 * ms, 0},
                                                              {"1000_1cP", 1000, 1 * cP, 0.8 * us, 6 * ms, 19},
                                                              {"1000_0p1cP", 1000, 0.1 * cP, 3.2 * us, 8 * ms, 19}};
     const Case& scanned = *std::find_if(cases.begin(), cases.end(), [](const Case& c) { return c.id == "1000_1cP"; });
     // The dt scan: steps above the run's to 3 ms, past the force peak near a strain of 2.5; the run
-    // itself; half its step to 1 ms, the reference for the last difference.
+    // itself when its step is fixed; half the smallest step to 1 ms, the reference for the last
+    // difference.
     const std::vector<double> scan_steps = full ? std::vector<double>{3.2, 1.6, 0.8, 0.4, 0.2} : std::vector<double>{6.4, 3.2, 1.6};
     const double t_scan = 3 * ms, t_diff = 1 * ms;
     Json results = st::make_results(opt);
@@ -345,14 +358,16 @@ int main(int argc, char** argv) {
     std::vector<Run> members;
     for (double d : scan_steps)
       members.push_back(shear_run(s, {"", scanned.rate, scanned.mu, d * us, t_scan, 0}, 40, opt, "scan_", sitting.remaining() / double(jobs_left--), t_diff));
-    const Run reference = shear_run(s, {"", scanned.rate, scanned.mu, scanned.dt / 2, t_diff, 0}, 40, opt, "scan_",
+    const bool own = scanned.ladder == 0;  // the run is the scan's member at its own step
+    const double dt_ref = (own ? scanned.dt : scan_steps.back() * us) / 2;
+    const Run reference = shear_run(s, {"", scanned.rate, scanned.mu, dt_ref, t_diff, 0}, 40, opt, "scan_",
                                     sitting.remaining() / double(jobs_left--), t_diff);
     Tables T;
     for (const Case& c : cases) {
-      const Run r = shear_run(s, c, 400, opt, "", sitting.remaining() / double(jobs_left--), c.id == scanned.id ? t_diff : 0);
+      const Run r = shear_run(s, c, 400, opt, "", sitting.remaining() / double(jobs_left--), own && c.id == scanned.id ? t_diff : 0);
       st::record_run(results, c.id, r.progress());
       tabulate(results, T, r, opt);
-      if (c.id == scanned.id) members.push_back(r);  // the dt scan's member at the run's own step
+      if (own && c.id == scanned.id) members.push_back(r);  // the dt scan's member at the run's own step
     }
     members.push_back(reference);
     results["tables"]["orientation"] = T.orientation;
@@ -360,7 +375,8 @@ int main(int argc, char** argv) {
     results["tables"]["outlines"] = T.outlines;
 
     // ---- 3. The dt scan: the largest stable step, and the error of larger steps ------------------
-    dt_scan(results, members, scan_steps.size(), 16 * units::um / s.cells, scanned.dt, t_diff);
+    // Stable: the largest step the run takes (the ladder's top rung) against the scan's largest stable one.
+    dt_scan(results, members, own ? scan_steps.size() : members.size(), 16 * units::um / s.cells, scanned.dt * double(1 << scanned.ladder), t_diff);
     st::write_results(opt, results);
     return 0;
   });

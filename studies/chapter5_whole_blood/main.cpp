@@ -294,7 +294,7 @@ void WholeBlood::wall(const Wall& w, std::size_t wi) {
       if (ib.step_count() == start_steps[k]) io::write_checkpoint(start_file + to_text(k) + ".h5", init_text, ib);
   };
   ih.at_start = [&](const sim::ImmersedBoundary& ib) { v_ref = ib.batch(0).type().reference_volume() / std::pow(um, 3); };
-  const st::SceneRun init = st::run_scene(init_text, "init_" + w.name, s.every, opt.keeps_runs(), opt, ih,
+  const st::SceneRun init = st::run_scene(init_text, "init_" + w.name, run::Cadence{s.every}, opt.keeps_runs(), opt, ih,
                                              sitting.remaining() / double(s.walls.size() - wi));  // shared by the inits to come
   st::record_run(results, "init_" + w.name, init.progress(starts.back()));
   add_cost("init " + w.name, double(init.steps), double(std::lround(starts.back() / s.dt)), init.seconds_per_step());
@@ -350,7 +350,7 @@ void WholeBlood::run_from(const Wall& w, const Domain& box, std::size_t k, bool 
       if (!writer) writer = std::make_unique<io::SnapshotWriter>(opt.out_dir + "/snapshots_" + tag, ib), writer->resume(ib.time());
       if ((ib.step_count() - start.state.clock.step) % snapshot_every == 0) writer->write(ib);
     };
-  const st::SceneRun run = st::run_scene(text, tag, s.every, opt.keeps_runs(), opt, h, sitting.remaining());
+  const st::SceneRun run = st::run_scene(text, tag, run::Cadence{s.every}, opt.keeps_runs(), opt, h, sitting.remaining());
   const long done = run.steps - start.state.clock.step;  // the run's own span: steps from its starting time
   st::RunProgress progress = run.progress(t_end);
   progress.t -= t_start, progress.t_end = window, progress.steps = done;

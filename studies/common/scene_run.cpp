@@ -14,7 +14,7 @@ RunProgress SceneRun::progress(double t_end) const {
   return {finished, samples.empty() ? 0.0 : samples.back().at(0), t_end, steps, seconds_per_step(), stopped};
 }
 
-SceneRun run_scene(const std::string& text, const std::string& tag, int every, bool resumable, const Options& opt,
+SceneRun run_scene(const std::string& text, const std::string& tag, run::Cadence every, bool resumable, const Options& opt,
                    const SceneRunHooks& hooks, double max_seconds) {
   std::ofstream(opt.out_dir + "/scene_" + tag + ".yaml") << text;
   scene::Scene sc = scene::parse_scene(text, "scene_" + tag + ".yaml");
@@ -22,7 +22,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, int every, b
   o.t_end = sc.t_end;
   o.sitting = resumable ? std::max(0.0, max_seconds) : INFINITY;  // a spent sitting takes no step
   if (resumable) o.checkpoint = opt.out_dir + "/checkpoint_" + tag + ".h5";
-  o.sample_every = {every, 0, 0};
+  o.sample_every = every;
   run::Hooks h;
   h.built = hooks.at_start;
   if (hooks.after_step || hooks.record)

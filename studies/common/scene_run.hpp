@@ -47,10 +47,11 @@ struct SceneRun {
   RunProgress progress(double t_end) const;
 };
 
-/// Runs the scene `text` (its end time is the run's), sampling every `every` steps and at the end;
+/// Runs the scene `text` (its end time is the run's), sampling at the cadence `every` (steps, or
+/// simulated time for a run whose step changes) and at the end;
 /// writes DIR/scene_<tag>.yaml. A resumable run given `max_seconds` of wall time (a sitting) saves
 /// its checkpoint when they are spent and returns unfinished (continued at the next start).
-SceneRun run_scene(const std::string& text, const std::string& tag, int every, bool resumable, const Options& opt,
+SceneRun run_scene(const std::string& text, const std::string& tag, run::Cadence every, bool resumable, const Options& opt,
                    const SceneRunHooks& hooks, double max_seconds = INFINITY);
 
 }  // namespace rbfib::study
