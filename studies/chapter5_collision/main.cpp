@@ -8,7 +8,8 @@
 // along e2); e-f the edge of cell 2 facing the concavity of cell 1; g-h as c-d with cell 2 turned by
 // pi/2 about e1 + e3. mu = 1 cP (the seed's public drivers; Sec. 2.1's 0.1 cP a full-scale variant).
 // Quick: h = 0.5 um (n_d = 400, n_s = 1,600: the seed's n h^2), dt = 100 ns, to 60 us. Full: to 10 ms
-// or eq. 5.4's stop, h = 0.5 um at 1 and 0.1 cP, then the seed's h = 0.2 um (2,500 / 10,000, 50 ns).
+// or eq. 5.4's stop, h = 0.5 um at 1 and 0.1 cP, then the seed's h = 0.2 um (2,500 / 10,000), on the
+// seed's adaptive ladder dt = 2^k x 50 ns up to 800 ns.
 // Measured: the minimum distance between the cells' sample sites, the centroids' approach, volumes,
 // max |u|, dt over eq. 5.4's bound; outlines seen from above the plane x = z and each cell's depth
 // over width (a hemisphere facing the other cell: 1/2) at t = 0, mid-run (full: the figure's time)
@@ -73,10 +74,11 @@ std::vector<Orientation> orientations() {
 
 struct Setup {
   std::string label;    // names its runs (<label>_<orientation>) and their directory
-  double h, dt, t_end;  // cm, s, s
+  double h, dt, t_end;  // cm, s, s (dt: the fixed step, or with the ladder its lowest rung)
   double mu;            // P
   int n_data, n_sample;
   int measure_every, checkpoint_every;  // steps (checkpoints: 0 = none, a run that is not resumable)
+  int ladder = 0;  // > 0: the seed's adaptive step, dt = 2^k dt for k = 0..ladder by eq. 5.4
 };
 
 /// The run's scene (docs/scenes.md). Centres on the line x = z, y = 8 um with the planes supporting
@@ -93,6 +95,7 @@ scene::Scene collision_scene(const Orientation& o, const Setup& s, double force)
   sc.fluid_options.integrator = TimeIntegrator::peskin_two_stage;
   sc.fluid_options.dt = s.dt;
   sc.t_end = s.t_end;
+  if (s.ladder > 0) sc.ib.adaptive = {true, s.dt, s.ladder, 16};
   sc.ib.kernel = ib::Kernel::cosine4;
   sc.types = {scene::cell_type("red cell", "red_cell", s.n_data, s.n_sample)};
   for (int c = 0; c < 2; ++c) {
@@ -251,10 +254,10 @@ Outcome run_orientation(const Orientation& o, const Setup& s, double figure_time
 
 // ---- Results tables -----------------------------------------------------------------------------
 struct Tables {
-  Json runs = st::table({"run", "setup", "orientation", "h_um", "mu_cP", "n_sample", "dt_ns", "status", "steps", "t_us", "t_stop_us", "t_figure_us",
+  Json runs = st::table({"run", "setup", "orientation", "h_um", "mu_cP", "n_sample", "dt_ns", "dt_top_ns", "dt_mean_ns", "status", "steps", "t_us", "t_stop_us", "t_figure_us",
                          "t_stop_over_t_figure", "stopped_by_eq54", "initial_gap_over_h", "min_gap_um", "min_gap_over_h", "t_min_gap_us",
                          "approach_um", "approach_over_h", "max_volume_change_rel", "seconds", "seconds_per_step", "steps_to_go", "hours_to_go"},
-                        {"", "", "", "um", "cP", "", "ns", "", "", "us", "us", "us", "", "", "", "um", "", "us", "um", "", "", "s", "s", "", "h"});
+                        {"", "", "", "um", "cP", "", "ns", "ns", "ns", "", "", "us", "us", "us", "", "", "", "um", "", "us", "um", "", "", "s", "s", "", "h"});
   Json gap_series = st::table({"setup", "orientation", "h_um", "t_us", "min_gap_um", "gap_over_h", "separation_um", "volume_change_1",
                                "volume_change_2", "max_velocity_mm_s", "eq54_ratio"},
                               {"", "", "um", "us", "um", "", "um", "", "", "mm/s", ""});
@@ -282,8 +285,9 @@ void tabulate(Tables& T, Json& results, const Setup& s, const Orientation& o, st
   const std::string id = s.label + "_" + o.id;
   const double h_um = s.h / units::um, t_figure = o.t_figure_ms * units::ms;
   if (r.series.empty()) {  // not begun: nothing measured
-    Json::Array cols{Json(id), Json(s.label), Json(o.id), Json(h_um), Json(s.mu / units::cP), Json(s.n_sample), Json(s.dt / units::ns), Json("not begun")};
-    cols.resize(25);
+    Json::Array cols{Json(id), Json(s.label), Json(o.id), Json(h_um), Json(s.mu / units::cP), Json(s.n_sample), Json(s.dt / units::ns),
+                     Json(s.dt * double(1 << s.ladder) / units::ns), Json(), Json("not begun")};
+    cols.resize(27);
     T.runs["rows"].push(Json(cols));
     T.fig_rows[k].insert(T.fig_rows[k].end(), {Json("not begun"), Json(), Json(), Json(), Json()});
     st::record_run(results, id, st::RunProgress{false, 0, s.t_end, 0, NAN, ""});
@@ -320,12 +324,14 @@ void tabulate(Tables& T, Json& results, const Setup& s, const Orientation& o, st
   const double t = q.clock.t, approach = samples.front()[kSeparation] - closest;
   // The time per step: this sitting's if it stepped, else every sitting's.
   const double sps = q.sitting_steps > 0 ? q.sitting_seconds / q.sitting_steps : (steps > 0 ? q.wall_seconds / steps : NAN);
-  const long to_go = q.ended() ? 0 : std::lround((s.t_end - t) / s.dt);
+  const double mean_dt = steps > 0 ? t / double(steps) : s.dt;  // the ladder's mean step so far
+  const long to_go = q.ended() ? 0 : std::lround((s.t_end - t) / mean_dt);
   const double hours = to_go * sps / 3600;
   T.hours_to_go += std::isfinite(hours) ? hours : 0;
   if (std::isfinite(sps) && own) T.per_step.push_back(sps);
   const Json ratio = stopped ? Json(t / t_figure) : Json();
-  T.runs["rows"].push(row({id, s.label, o.id, h_um, s.mu / units::cP, s.n_sample, s.dt / units::ns, how, double(steps), t / units::us,
+  T.runs["rows"].push(row({id, s.label, o.id, h_um, s.mu / units::cP, s.n_sample, s.dt / units::ns, s.dt * double(1 << s.ladder) / units::ns,
+                           steps > 0 ? Json(mean_dt / units::ns) : Json(), how, double(steps), t / units::us,
                            stopped ? Json(t / units::us) : Json(), t_figure / units::us, ratio, q.ended() ? Json(how == "eq. 5.4" ? 1.0 : 0.0) : Json(),
                            samples.front()[kGap] / s.h, gmin / units::um, gmin / s.h, tmin / units::us, approach / units::um, approach / s.h, vmax,
                            q.wall_seconds, sps, double(to_go), hours}));
@@ -344,9 +350,11 @@ void describe(Json& P, const std::vector<Setup>& setups, double sitting_seconds)
   P["scheme"] = "Peskin's two-stage scheme, the seed's coupling (a)-(g), the 4-point cosine kernel, eq. 5.4 checked every step";
   for (const Setup& s : setups)
     P["setup_" + s.label] = "h = " + fmt(s.h / units::um) + " um, n_d = " + to_text(s.n_data) + ", n_s = " + to_text(s.n_sample) +
-                            ", dt = " + fmt(s.dt / units::ns) + " ns, mu = " + fmt(s.mu / units::cP) + " cP, to " +
+                            ", dt = " + (s.ladder > 0 ? "2^k x " + fmt(s.dt / units::ns) + " ns (k = 0.." + to_text(s.ladder) + " by eq. 5.4, the seed's adaptive step)"
+                                                      : fmt(s.dt / units::ns) + " ns") + ", mu = " + fmt(s.mu / units::cP) + " cP, to " +
                             fmt(s.t_end / units::us) + " us or eq. 5.4; sampled every " + to_text(s.measure_every) +
-                            " steps; eq. 5.4 stops a run when ||f||_inf > " + fmt(s.h * 1.0 / (16 * s.dt * s.dt), "%.3g") + " dyn/cm^3";
+                            " steps; eq. 5.4 stops a run when ||f||_inf > " + fmt(s.h * 1.0 / (16 * s.dt * s.dt), "%.3g") + " dyn/cm^3" +
+                            (s.ladder > 0 ? " (at the lowest rung; above it the step is retaken a rung lower)" : "");
   P["initial_hull_gap"] = "4h along d = (e1 + e3)/sqrt 2, centres on x = z, y = 8 um, the gap centred on the box centre";
   P["fictitious_force_density_dyn_cm2"] = kFict;
   P["fictitious_force_per_cell_dyn"] = kFict * A0;
@@ -363,13 +371,15 @@ int main(int argc, char** argv) {
     const bool full = opt.scale == st::Scale::full;
 
     // ---- 1. Parameters -----------------------------------------------------------------------
-    // Quick: h = 0.5 um to 60 us. Full: each run to the public driver's 10 ms or until eq. 5.4
-    // stops it: h = 0.5 um at 1 cP, the text's 0.1 cP at h = 0.5 um, then the seed's h = 0.2 um
-    // (days here; resumable over sittings).
+    // Quick: h = 0.5 um to 60 us at a fixed 100 ns. Full: each run to the public driver's 10 ms or
+    // until eq. 5.4 stops it, on the seed's adaptive ladder (50 ns to 800 ns; eq. 5.4 stops a run
+    // when even 50 ns breaks it): h = 0.5 um at 1 cP, the text's 0.1 cP at h = 0.5 um, then the
+    // seed's h = 0.2 um (resumable over sittings).
     const double t_end = full ? 10 * units::ms : 60 * units::us;
-    const Setup coarse{"h0.5", 0.5 * units::um, 100 * units::ns, t_end, 1 * units::cP, 400, 1600, 10, opt.keeps_runs() ? 1000 : 0};
-    const Setup text_viscosity{"h0.5_mu0.1", 0.5 * units::um, 100 * units::ns, t_end, 0.1 * units::cP, 400, 1600, 10, 1000};
-    const Setup seed{"h0.2", 0.2 * units::um, 50 * units::ns, t_end, 1 * units::cP, 2500, 10000, 20, 200};
+    const Setup coarse = full ? Setup{"h0.5", 0.5 * units::um, 50 * units::ns, t_end, 1 * units::cP, 400, 1600, 10, 1000, 4}
+                              : Setup{"h0.5", 0.5 * units::um, 100 * units::ns, t_end, 1 * units::cP, 400, 1600, 10, opt.keeps_runs() ? 1000 : 0};
+    const Setup text_viscosity{"h0.5_mu0.1", 0.5 * units::um, 50 * units::ns, t_end, 0.1 * units::cP, 400, 1600, 10, 1000, 4};
+    const Setup seed{"h0.2", 0.2 * units::um, 50 * units::ns, t_end, 1 * units::cP, 2500, 10000, 20, 200, 4};
     std::vector<Setup> setups = {coarse};
     if (full) setups.insert(setups.end(), {text_viscosity, seed});
     const std::string own = full ? seed.label : coarse.label;  // the scale's own resolution, for the time per step
