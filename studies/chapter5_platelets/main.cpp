@@ -29,6 +29,7 @@
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/series.hpp"
 #include "rbfib/core/units.hpp"
+#include "rbfib/ib/interaction.hpp"
 #include "rbfib/scene/scene.hpp"
 
 #include <cmath>
@@ -40,41 +41,74 @@ using st::row;
 using st::Vec3;
 
 namespace {
-const double wall_y = 1 * units::um;        // the endothelium's plane
-const double gaps_um[2] = {0.3, 0.5};       // the seed's two platelets
+const double gaps_um[2] = {0.3, 0.5};  // the seed's two platelets
+
+/// The wall under the platelets: the seed's endothelium of tethered points on the plane y = 1 um
+/// (eq. 2.10 with the seed's k and eta), or the grid's own no-slip wall (the seed: "for modeling a
+/// healthy blood vessel, a flat wall suffices"). The grid wall lies at y = 0 and the top wall moves
+/// at 12 mm/s x 12/11, so that the platelets see the same gaps and the same shear as over the
+/// endothelium, which holds the fluid at rest across the 11 um below the top wall (1091/s).
+enum class Wall { tethers, grid };
 
 struct Setup {
   int cells_x = 0, cells_y = 0;  // grid cells along x (and z) and y
   int sites = 0;                 // data = sample sites per platelet
   int endothelium = 0;           // points per side of the lattice
-  double dt = 0, t_end = 0;
+  double dt = 0, t_end = 0;      // s (dt: the fixed step, or with the ladder its lowest rung)
 };
 
-/// The two platelets over the flat endothelium (Sec. 5.2) as a scene, the flow started as the shear.
-scene::Scene platelets_scene(const Setup& s) {
+double wall_plane(Wall w) { return w == Wall::tethers ? 1 * units::um : 0.0; }
+
+/// The two platelets over the flat wall (Sec. 5.2) as a scene, the flow started as the shear; with
+/// the grid wall the step climbs the seed's ladder (2^k dt, k = 0..4, by eq. 5.4).
+scene::Scene platelets_scene(const Setup& s, Wall w) {
   scene::Scene sc;
   sc.name = "chapter5_platelets";
   sc.grid = make_mac_grid(3, {s.cells_x, s.cells_y, s.cells_x}, {16 * units::um, 12 * units::um, 16 * units::um},
                           {MacBoundary::periodic, MacBoundary::dirichlet, MacBoundary::periodic});
-  sc.walls[1][1].velocity = {0, 0, 12 * units::mm};
+  sc.walls[1][1].velocity = {0, 0, w == Wall::tethers ? 12 * units::mm : 12 * units::mm * 12 / 11};
   sc.initial_shear = true;
   sc.fluid = {1, 1 * units::cP};  // g/cm^3, P
   sc.fluid_options.integrator = TimeIntegrator::backward_forward_euler;
   sc.fluid_options.dt = s.dt;
   sc.t_end = s.t_end;
+  if (w == Wall::grid) sc.ib.adaptive = {true, s.dt, 4, 16};
   sc.ib.kernel = ib::Kernel::bspline3;
   sc.types.push_back(scene::cell_type("platelet", "platelet", s.sites, s.sites));
   for (int c = 0; c < 2; ++c) {  // lying flat, the short axis along y; the centre 0.5 um above the gap
     const double xz = (4 + 8 * c) * units::um;
-    sc.cells.push_back({"platelet", {{xz, (1 + gaps_um[c] + 0.5) * units::um, xz}, {1, 0, 0}, 90 * (pi / 180)}});
+    sc.cells.push_back({"platelet", {{xz, wall_plane(w) + (gaps_um[c] + 0.5) * units::um, xz}, {1, 0, 0}, 90 * (pi / 180)}});
   }
-  sc.point_sets.push_back({"endothelium", {false, 1, wall_y, {s.endothelium, s.endothelium}}, 2.5, 2.5e-7});
+  if (w == Wall::tethers) sc.point_sets.push_back({"endothelium", {false, 1, wall_plane(w), {s.endothelium, s.endothelium}}, 2.5, 2.5e-7});
   return sc;
 }
 
+/// The endothelium's largest displacement from its anchors, and the RMS slip: the flow velocity
+/// interpolated at the anchors (where the wall holds it at rest), 0 for the grid's wall.
+std::array<double, 2> wall_motion(const sim::ImmersedBoundary& ib) {
+  if (ib.point_sets() == 0) return {0, 0};
+  const sim::TetheredPoints& e = ib.points(0);
+  const host_vector<double> Xe(e.X.begin(), e.X.end()), A(e.anchors.begin(), e.anchors.end());
+  const std::size_t m = Xe.size() / 3;
+  double worst = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    double d2 = 0;
+    for (int d = 0; d < 3; ++d) d2 += std::pow(Xe[d * m + i] - A[d * m + i], 2);
+    worst = std::max(worst, std::sqrt(d2));
+  }
+  const MacOperators& ops = ib.fluid().operators();
+  ib::Interaction probe({ops.component_box(0), ops.component_box(1), ops.component_box(2)}, ib::Kernel::bspline3);
+  dvec U;
+  probe.interpolate(e.anchors, ib.fluid_state().u, U);
+  const host_vector<double> Uh(U.begin(), U.end());
+  double sum = 0;
+  for (double u : Uh) sum += u * u;
+  return {worst, std::sqrt(sum / double(m))};
+}
+
 /// One sample: t, then per platelet (centre 3, short axis 3, gap, volume), then the endothelium's
-/// largest displacement from its anchors.
-std::vector<double> sample(const sim::ImmersedBoundary& ib) {
+/// largest displacement from its anchors and the RMS slip at them (wall_motion).
+std::vector<double> sample(const sim::ImmersedBoundary& ib, double wall_y) {
   const cells::Batch& b = ib.batch(0);
   const std::vector<double> X = b.positions_host();
   const long n = b.type().n_data();
@@ -89,16 +123,8 @@ std::vector<double> sample(const sim::ImmersedBoundary& ib) {
     // NaN until a force call has measured it (a state just restored from a checkpoint).
     row.push_back(ib.diagnostics(0).volume.empty() ? NAN : ib.diagnostics(0).volume[std::size_t(c)]);
   }
-  const sim::TetheredPoints& e = ib.points(0);
-  const host_vector<double> Xe(e.X.begin(), e.X.end()), A(e.anchors.begin(), e.anchors.end());
-  const std::size_t m = Xe.size() / 3;
-  double worst = 0;
-  for (std::size_t i = 0; i < m; ++i) {
-    double d2 = 0;
-    for (int d = 0; d < 3; ++d) d2 += std::pow(Xe[d * m + i] - A[d * m + i], 2);
-    worst = std::max(worst, std::sqrt(d2));
-  }
-  row.push_back(worst);
+  const std::array<double, 2> motion = wall_motion(ib);
+  row.insert(row.end(), motion.begin(), motion.end());
   return row;
 }
 
@@ -209,34 +235,72 @@ int main(int argc, char** argv) {
     P["platelet_sites"] = s.sites;
     P["endothelium"] = to_text(s.endothelium) + " x " + to_text(s.endothelium) + " tethered points at y = 1 um, k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm";
     P["gaps_um"] = Json::Array{Json(gaps_um[0]), Json(gaps_um[1])};
+    P["walls"] = "run platelets: the endothelium above (the seed's); run platelets_grid_wall: no endothelium, the grid's no-slip wall at y = 0 "
+                 "with the platelets at the same gaps above it and the top wall at 12 mm/s x 12/11 (the same shear above the wall, 1091/s), "
+                 "the step on the seed's ladder dt = 2^k x " + to_text(s.dt / us) + " us, k = 0..4, by eq. 5.4";
     P["dt_us"] = s.dt / us;
     P["t_end_ms"] = s.t_end / ms;
     P["kernel_integrator_coupling"] = "B3 kernel, backward-forward Euler, the seed's coupling (a)-(g)";
 
-    st::SceneRunHooks hooks;
-    hooks.sample = [](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib); };
-    const std::string text = scene::to_yaml(platelets_scene(s), "chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)");
-    const st::SceneRun run = st::run_scene(text, "platelets", run::Cadence{std::max(1L, total / 400)}, opt.keeps_runs(), opt, hooks, st::Sitting(opt).remaining());
-
-    std::vector<double> t;
-    double endothelium_max = 0;
-    for (const auto& r : run.samples) t.push_back(r[0]), endothelium_max = std::max(endothelium_max, r.back());
+    // The seed's endothelium (run "platelets", the checks' run) and the grid's wall on the ladder
+    // (run "platelets_grid_wall"), side by side in the table wall_treatments.
     Json ts = st::table({"gap_um", "t_ms", "strain", "tilt_deg", "jeffery_tilt_deg", "gap_now_um", "height_um"}, {"um", "ms", "", "deg", "deg", "um", "um"});
+    Json ts_grid = ts;
     Json sum = st::table({"gap_um", "min_gap_um", "tilt_end_deg", "tilt_rate_over_gdot", "jeffery_rate_over_gdot", "rate_over_jeffery", "flips",
                           "flip_frequency_1_s", "edge_on_ms", "tumble_frequency_1_s", "edge_on_ms_per_tumble", "wobble_frequency_1_s", "volume_change_rel"},
                          {"um", "um", "deg", "", "", "", "", "1/s", "ms", "1/s", "ms", "1/s", ""});
-    for (int c = 0; c < 2; ++c) report(analyse(run.samples, t, c, gdot, ts), c, t.back() - t.front(), sum, results["values"], opt);
-    results["values"]["endothelium_displacement_um"] = endothelium_max / units::um;
-    results["values"]["completed"] = run.stopped.empty() ? 1.0 : 0.0;
-    st::record_run(results, "platelets", run.progress(s.t_end));
+    Json sum_grid = sum, ignored;
+    Json walls = st::table({"wall", "t_ms", "dt_mean_us", "dt_top_us", "steps", "seconds_per_step", "hours_to_100ms", "wall_displacement_um",
+                            "slip_rms_end_um_s", "min_gap_um_near", "min_gap_um_far", "tilt_end_deg_near", "tilt_end_deg_far",
+                            "rate_over_jeffery_near", "rate_over_jeffery_far"},
+                           {"", "ms", "us", "us", "", "s", "h", "um", "um/s", "um", "um", "deg", "deg", "", ""});
+    Json cost = st::table({"wall", "h_um", "dt_us", "steps", "seconds", "seconds_per_step", "steps_to_100ms", "hours_to_100ms", "hours_to_go"},
+                          {"", "um", "us", "", "s", "s", "", "h", "h"});
+    const st::Sitting sitting(opt);
+    for (const Wall w : {Wall::tethers, Wall::grid}) {
+      const bool seed = w == Wall::tethers;
+      const std::string id = seed ? "platelets" : "platelets_grid_wall", suffix = seed ? "" : "_grid_wall";
+      st::SceneRunHooks hooks;
+      hooks.sample = [w](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib, wall_plane(w)); };
+      const std::string text = scene::to_yaml(platelets_scene(s, w), seed ? "chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)"
+                                                                          : "chapter5_platelets: two platelets over the grid's flat wall (Sec. 5.2)");
+      const run::Cadence every = seed ? run::Cadence{std::max(1L, total / 400)} : run::Cadence{0, s.t_end / 400};
+      const st::SceneRun run = st::run_scene(text, id, every, opt.keeps_runs(), opt, hooks, sitting.remaining() / (seed ? 2 : 1));
+      std::vector<double> t;
+      double displacement = 0;  // the largest over the run; the slip at its end (at t = 0 it is the initial shear's, gdot x 1 um)
+      for (const auto& r : run.samples) t.push_back(r[0]), displacement = std::max(displacement, r[r.size() - 2]);
+      const double slip = run.samples.back().back();
+      Platelet p[2];
+      for (int c = 0; c < 2; ++c) {
+        p[c] = analyse(run.samples, t, c, gdot, seed ? ts : ts_grid);
+        report(p[c], c, t.back() - t.front(), seed ? sum : sum_grid, seed ? results["values"] : ignored, opt);
+      }
+      Json& V = results["values"];
+      V["endothelium_displacement_um" + suffix] = displacement / units::um;
+      V["completed" + suffix] = run.stopped.empty() ? 1.0 : 0.0;
+      st::record_run(results, id, run.progress(s.t_end));
+      // The cost: time per step and the time to the seed's 100 ms at the mean step so far.
+      const double t_now = t.back(), mean_dt = run.steps > 0 ? t_now / double(run.steps) : s.dt, sps = run.seconds_per_step();
+      const double steps_100 = std::round(100 * ms / mean_dt);
+      cost["rows"].push(row({id, 16.0 / s.cells_x, mean_dt / us, double(run.steps), run.seconds, sps, steps_100, steps_100 * sps / 3600,
+                             (s.t_end - t_now) / mean_dt * sps / 3600}));
+      walls["rows"].push(row({seed ? "tethers (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm)" : "grid wall", t_now / ms, mean_dt / us,
+                              s.dt * (seed ? 1 : 16) / us, double(run.steps), sps, steps_100 * sps / 3600, displacement / units::um, slip / units::um,
+                              p[0].min_gap / units::um, p[1].min_gap / units::um, p[0].tilt.back() * 180 / pi, p[1].tilt.back() * 180 / pi,
+                              p[0].tilt_rate / p[0].jeffery_rate, p[1].tilt_rate / p[1].jeffery_rate}));
+      if (!seed)
+        for (int c = 0; c < 2; ++c) {
+          const std::string k = (c == 0 ? "_near" : "_far") + suffix;
+          V["min_gap_um" + k] = p[c].min_gap / units::um;
+          V["rate_over_jeffery" + k] = p[c].tilt_rate / p[c].jeffery_rate;
+          V["volume_change" + k] = p[c].volume_change;
+        }
+    }
     results["tables"]["platelets"] = ts;
+    results["tables"]["platelets_grid_wall"] = ts_grid;
     results["tables"]["summary"] = sum;
-    // The cost: time per step and the time to the seed's 100 ms at the seed's step.
-    Json cost = st::table({"h_um", "dt_us", "steps", "seconds", "seconds_per_step", "steps_to_100ms", "hours_to_100ms", "hours_to_go"},
-                          {"um", "us", "", "s", "s", "", "h", "h"});
-    const double steps_100 = std::round(100 * ms / s.dt), sps = run.seconds_per_step();
-    cost["rows"].push(row({16.0 / s.cells_x, s.dt / us, double(run.steps), run.seconds, sps, steps_100, steps_100 * sps / 3600,
-                           double(total - run.steps) * sps / 3600}));
+    results["tables"]["summary_grid_wall"] = sum_grid;
+    results["tables"]["wall_treatments"] = walls;
     results["tables"]["cost"] = cost;
     st::write_results(opt, results);
     return 0;
