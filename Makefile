@@ -23,6 +23,7 @@ NVCC := $(firstword $(wildcard /usr/local/cuda/bin/nvcc) $(shell command -v nvcc
 help:
 	@echo "make reproduce          every implemented study at SCALE=$(SCALE) -> reports/"
 	@echo "make reproduce-NAME     one study or chapter (appendixA, chapter2, ...), e.g. SCALE=full SITTING=3600"
+	@echo "make keep-NAME          copy a full-scale run's checkpoints into kept/NAME/full (commit them to continue elsewhere)"
 	@echo "make test               install deps, build, run every test (unit, harness, studies at quick scale)"
 	@echo "make build-cuda         configure and build the CUDA backend (nvcc)"
 	@echo "make gpu-check          on a machine with an NVIDIA GPU: CUDA build, unit tests on the device, GPU benchmarks -> reports/gpu"
@@ -83,6 +84,10 @@ reproduce: build
 
 reproduce-%: build
 	$(PY) -m harness run $* --scale $(SCALE) --build $(BUILD) $(if $(SITTING),--sitting $(SITTING))
+
+# Copies a full-scale run's checkpoints into kept/NAME/full (to commit): a full run elsewhere continues from them.
+keep-%:
+	$(PY) -m harness keep $*
 
 # The stored evaluation sites of the Chapter 3 study: N = 22, 44, 67 (n = 529, 2025, 4624).
 POINT_SET_DEGREES := 22 44 67

@@ -3,6 +3,7 @@ import argparse
 import datetime
 import json
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -42,9 +43,14 @@ def parse(argv):
     r.add_argument("--no-run", action="store_true", help="render from the existing results.json, do not run the driver")
     r.add_argument("--gate", default="all", help="which failed checks fail the command: all (default: reports and "
                    "`make reproduce`) or correctness (`make test`: checks marked speed are printed, not gating)")
+    k = sub.add_parser("keep", help="copy a study's checkpoints from its run directory into kept/ (to commit), so that "
+                       "a later `run` on another machine continues where this one stopped")
+    k.add_argument("target", help="a study name, a chapter or 'all'")
+    k.add_argument("--scale", default="full", help="full (default) or quick")
+    k.add_argument("--out", default=os.path.join(ROOT, "runs"), help="where run directories are")
     sub.add_parser("list", help="list the studies")
     a = p.parse_args(argv)
-    if a.command == "run" and a.scale not in ("quick", "full"):
+    if a.command in ("run", "keep") and a.scale not in ("quick", "full"):
         raise HarnessError(f"--scale = '{a.scale}' is not one of: quick, full")
     if a.command == "run" and a.gate not in ("all", "correctness"):
         raise HarnessError(f"--gate = '{a.gate}' is not one of: all, correctness")
@@ -90,6 +96,43 @@ def openblas_core(env):
     return None
 
 
+KEPT = os.path.join(ROOT, "kept")
+
+
+def checkpoints(folder):
+    """Paths (relative to folder) of the checkpoints (*.h5) under it, sorted."""
+    out = []
+    for d, _, files in os.walk(folder):
+        out += [os.path.relpath(os.path.join(d, f), folder) for f in files if f.endswith(".h5")]
+    return sorted(out)
+
+
+def keep_study(name, scale, runs):
+    """Copies the checkpoints of runs/<name>/<scale> into kept/<name>/<scale> (replacing older copies)."""
+    src, dst = os.path.join(runs, name, scale), os.path.join(KEPT, name, scale)
+    files = checkpoints(src)
+    if not files:
+        print(f"harness: {name}: no checkpoints under {src}")
+        return
+    for rel in files:
+        os.makedirs(os.path.dirname(os.path.join(dst, rel)), exist_ok=True)
+        shutil.copy2(os.path.join(src, rel), os.path.join(dst, rel))
+    size = sum(os.path.getsize(os.path.join(dst, rel)) for rel in files)
+    print(f"harness: {name}: kept {len(files)} checkpoints ({size / 2**20:.1f} MiB) in {dst}")
+
+
+def continue_from_kept(name, scale, run_dir):
+    """Copies kept checkpoints (kept/<name>/<scale>) that the run directory lacks into it, so that a
+    run started on another machine continues; a checkpoint already in the run directory is newer."""
+    src = os.path.join(KEPT, name, scale)
+    taken = [rel for rel in checkpoints(src) if not os.path.exists(os.path.join(run_dir, rel))]
+    for rel in taken:
+        os.makedirs(os.path.dirname(os.path.join(run_dir, rel)), exist_ok=True)
+        shutil.copy2(os.path.join(src, rel), os.path.join(run_dir, rel))
+    if taken:
+        print(f"harness: {name}: continuing from {len(taken)} kept checkpoints ({src})", flush=True)
+
+
 def run_study(meta, args):
     name = meta["name"]
     ref = catalog.reference(ROOT, name)  # validate before spending time on the run
@@ -103,6 +146,8 @@ def run_study(meta, args):
             raise HarnessError(f"study '{name}': driver {exe} not built (run `make build`)")
         if os.path.exists(results_path):
             os.remove(results_path)
+        if args.scale == "full":
+            continue_from_kept(name, args.scale, run_dir)
         print(f"harness: running {name} at {args.scale} scale -> {run_dir}", flush=True)
         t0 = time.monotonic()
         # Recorded because it changes timings: on a loaded machine OMP_WAIT_POLICY=PASSIVE keeps a
@@ -185,6 +230,10 @@ def main(argv):
                 print(f"{m['name']:28s} {m['chapter']:10s} {m['title']}")
             return 0
         selected = catalog.select(ROOT, args.target)
+        if args.command == "keep":
+            for m in selected:
+                keep_study(m["name"], args.scale, args.out)
+            return 0
         summaries, broken = [], []
         for m in selected:
             if len(selected) == 1:

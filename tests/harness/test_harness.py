@@ -260,3 +260,34 @@ class BadInput(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class KeptCheckpoints(unittest.TestCase):
+    """`keep` copies a run's checkpoints into kept/; a later full run on a fresh machine takes the
+    ones its run directory lacks and leaves newer ones alone."""
+
+    def test_keep_then_continue(self):
+        from harness import cli
+        with tempfile.TemporaryDirectory() as tmp:
+            runs, kept = os.path.join(tmp, "runs"), os.path.join(tmp, "kept")
+            src = os.path.join(runs, "study_x", "full", "grid_a")
+            os.makedirs(src)
+            for name, text in (("checkpoint.h5", "state 1"), ("results.json", "{}")):
+                with open(os.path.join(src, name), "w") as f:
+                    f.write(text)
+            old = cli.KEPT
+            cli.KEPT = kept
+            try:
+                cli.keep_study("study_x", "full", runs)
+                self.assertEqual(cli.checkpoints(os.path.join(kept, "study_x", "full")), [os.path.join("grid_a", "checkpoint.h5")])
+                fresh = os.path.join(tmp, "fresh")
+                cli.continue_from_kept("study_x", "full", fresh)
+                with open(os.path.join(fresh, "grid_a", "checkpoint.h5")) as f:
+                    self.assertEqual(f.read(), "state 1")
+                with open(os.path.join(fresh, "grid_a", "checkpoint.h5"), "w") as f:
+                    f.write("state 2")  # the run went on here: the kept copy is older
+                cli.continue_from_kept("study_x", "full", fresh)
+                with open(os.path.join(fresh, "grid_a", "checkpoint.h5")) as f:
+                    self.assertEqual(f.read(), "state 2")
+            finally:
+                cli.KEPT = old
