@@ -18,7 +18,7 @@ DEBS += libthrust-dev libcub-dev
 endif
 NVCC := $(firstword $(wildcard /usr/local/cuda/bin/nvcc) $(shell command -v nvcc 2>/dev/null))
 
-.PHONY: help deps configure build test test-unit check-cuda build-cuda gpu-check reproduce reproduce-% point-sets clean
+.PHONY: help deps configure build test test-unit check-cuda build-cuda gpu-check reproduce reproduce-% keep-% point-sets clean
 
 help:
 	@echo "make reproduce          every implemented study at SCALE=$(SCALE) -> reports/"
