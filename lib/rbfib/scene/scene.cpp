@@ -460,6 +460,16 @@ sim::TetheredPoints tethered_points(const PointSetEntry& e, const std::array<dou
   return p;
 }
 
+sim::TetherSheet tether_sheet(const Scene& s, const PointSetEntry& e) {
+  const PointSurface& f = e.surface;
+  const int n = f.normal, p = n == 0 ? 1 : 0, q = n == 2 ? 1 : 2;
+  if (s.grid.lower[n] != MacBoundary::dirichlet || s.grid.upper[n] != MacBoundary::dirichlet)
+    throw InputError("tethered_points '" + e.name + "'", "(its normal axis)", "the sheet model of the tethers' bound needs walls at both ends of its normal axis");
+  const double area = s.grid.length[p] * s.grid.length[q];
+  const double count = f.spiral ? double(f.points) : double(f.lattice[0]) * double(f.lattice[1]);
+  return {s.grid.h(n), s.grid.length[n], f.at - s.grid.origin[n] + (f.spiral ? f.bump : 0.0), count / area, s.fluid.density, s.fluid.viscosity, s.ib.kernel};
+}
+
 std::array<std::array<WallMotion, 2>, 3> walls_at_rest() {
   std::array<std::array<WallMotion, 2>, 3> w{};
   for (int d = 0; d < 3; ++d) w[d][0].axis = w[d][1].axis = d;
@@ -489,8 +499,21 @@ PointSetEntry read_points(const Fields& f, const Scene& s) {
   PointSetEntry p;
   p.name = f.string("name");
   p.surface = read_point_surface(f, s);
-  p.k = f.nonnegative("k", "dyn/cm");
-  p.eta = f.nonnegative("eta", "dyn s/cm");
+  if (f.has("follow_step")) {
+    for (const char* key : {"k", "eta"})
+      if (f.has(key)) throw InputError(f.at(key), "(given)", "a point set whose constants follow the step (follow_step) takes no " + std::string(key));
+    const Fields r = f.map("follow_step");
+    p.follow_gain = r.quantity("gain", "");
+    if (!(p.follow_gain > 0 && p.follow_gain < 1)) throw InputError(r.at("gain"), to_text(p.follow_gain), "must lie in (0, 1)");
+    r.finish();
+    if (s.ib.coupling != sim::Coupling::seed)
+      throw InputError(f.at("follow_step"), "(given)", "the rule assumes the seed's coupling (the spring at X^n); this scene's coupling is " +
+                                                           std::string(sim::to_string(s.ib.coupling)));
+    tether_sheet(s, p);  // the model must apply: walls across the sheet
+  } else {
+    p.k = f.nonnegative("k", "dyn/cm");
+    p.eta = f.nonnegative("eta", "dyn s/cm");
+  }
   f.finish();
   return p;
 }
@@ -741,7 +764,15 @@ std::vector<std::string> check_contacts(const Scene& s, const StartingState* sta
 sim::ImmersedBoundary build(const Scene& s, const StartingState* start) {
   check_contacts(s, start);
   const auto& walls = s.walls;
-  sim::ImmersedBoundary ib(s.grid, s.fluid, s.fluid_options, boundary_velocity(s), s.ib);
+  // The adaptive step's guard from tethers with fixed constants: no rung above their explicit
+  // stability bound (sim/tether_stability.hpp), which eq. 5.4 does not see.
+  sim::IbOptions options = s.ib;
+  if (options.adaptive.enabled)
+    for (const PointSetEntry& p : s.point_sets)
+      if (p.follow_gain == 0 && (p.k > 0 || p.eta > 0) && s.grid.lower[p.surface.normal] == MacBoundary::dirichlet &&
+          s.grid.upper[p.surface.normal] == MacBoundary::dirichlet)
+        options.adaptive.dt_max = std::min(options.adaptive.dt_max, sim::tether_dt_limit(tether_sheet(s, p), p.k, p.eta, s.ib.coupling == sim::Coupling::midpoint));
+  sim::ImmersedBoundary ib(s.grid, s.fluid, s.fluid_options, boundary_velocity(s), options);
   if (s.initial_shear) {
     // The steady flow between the walls: linear in the wall-normal coordinate for each wall axis
     // (one wall axis at most carries a shear; with several, their profiles add).
@@ -776,7 +807,15 @@ sim::ImmersedBoundary build(const Scene& s, const StartingState* start) {
     for (std::size_t c = 0; c < forces.size(); ++c) batch.set_body_force(index_t(c), forces[c]);
     ib.add(std::move(batch));
   }
-  for (const PointSetEntry& p : s.point_sets) ib.add(tethered_points(p, s.grid.length));
+  for (const PointSetEntry& p : s.point_sets) {
+    sim::TetheredPoints points = tethered_points(p, s.grid.length);
+    if (p.follow_gain > 0) {  // the constants of the first step; the step sets them from then on
+      points.follow = sim::TetherRule{tether_sheet(s, p), p.follow_gain};
+      const sim::TetherConstants c = sim::tether_constants_for_step(points.follow->sheet, s.fluid_options.dt, p.follow_gain);
+      points.k = c.k, points.eta = c.eta;
+    }
+    ib.add(std::move(points));
+  }
   if (start) {
     sim::ImmersedBoundary::Carried c = ib.carried();
     c.fluid = start->state.fluid;
@@ -947,7 +986,8 @@ std::string to_yaml(const Scene& s, const std::string& comment) {
       << q(f.at, "cm");
     if (f.spiral) o << ", bump: " << q(f.bump, "cm") << ", points: " << f.points;
     else o << ", points: [" << f.lattice[0] << ", " << f.lattice[1] << "]";
-    o << "}, k: " << q(p.k, "dyn/cm") << ", eta: " << q(p.eta, "dyn s/cm") << "}\n";
+    if (p.follow_gain > 0) o << "}, follow_step: {gain: " << q(p.follow_gain, "") << "}}\n";
+    else o << "}, k: " << q(p.k, "dyn/cm") << ", eta: " << q(p.eta, "dyn s/cm") << "}\n";
   }
   o << "output: {diagnostics_every: " << s.diagnostics_every;
   if (s.checkpoint_every > 0) o << ", checkpoint_every: " << q(s.checkpoint_every, "s");

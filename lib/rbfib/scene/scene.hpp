@@ -75,12 +75,15 @@ struct PointSurface {
   double bump = 0;                  ///< spiral: eq. 5.5's bump height (cm)
 };
 
-/// A set of points held to their positions by damped springs (eq. 2.10), k and eta per point.
+/// A set of points held to their positions by damped springs (eq. 2.10), k and eta per point:
+/// given, or following the step by the seed's rule at a gain (sim/tether_stability.hpp; YAML
+/// `follow_step: {gain: 0.5}` in place of k and eta).
 struct PointSetEntry {
   std::string name;
   PointSurface surface;
-  double k = 0;    ///< dyn/cm
-  double eta = 0;  ///< dyn s/cm
+  double k = 0;            ///< dyn/cm
+  double eta = 0;          ///< dyn s/cm
+  double follow_gain = 0;  ///< > 0: k and eta follow the step at this gain, in (0, 1)
 };
 
 /// The points of a set on its surface in a box of the given lengths (cm), n x 3 column-major.
@@ -164,6 +167,11 @@ std::vector<std::string> check_contacts(const Scene& scene, const StartingState*
 /// when the scene has one), the fluid, clock, points and kept cells of the starting state.
 /// Builds each type's operators (seconds to minutes for large types).
 sim::ImmersedBoundary build(const Scene& scene, const StartingState* start = nullptr);
+
+/// The flat sheet that models a point set's explicit stability in the scene (its normal axis must
+/// have walls at both ends; InputError otherwise): its points per area over the box's tangential
+/// face, its height above the lower wall (a bumpy spiral: its crest, the conservative choice).
+sim::TetherSheet tether_sheet(const Scene& scene, const PointSetEntry& entry);
 
 /// The shear rate between the walls at t = 0 (1/s): the largest wall-velocity difference over the
 /// gap (0 without moving walls).

@@ -62,6 +62,8 @@ ImmersedBoundary::ImmersedBoundary(std::unique_ptr<FluidStep> fluid, IbOptions i
     level_ = int(std::lround(k));
     require(std::abs(k - level_) < 1e-9 && level_ >= 0 && level_ <= a.max_level, "fluid.dt", fluid_->dt(),
             "must be 2^k dt_min (dt_min = " + to_text(a.dt_min) + " s) with k in [0, " + to_text(a.max_level) + "]");
+    require(fluid_->dt() <= a.dt_max * (1 + 1e-12), "fluid.dt", fluid_->dt(),
+            "exceeds the adaptive step's guard dt_max = " + to_text(a.dt_max) + " s (a wall's own stability bound)");
   }
 }
 
@@ -123,7 +125,7 @@ IbStepReport ImmersedBoundary::step() {
       r.refused = refused;
       if (a.enabled) {
         // Grow by one level only after grow_after consecutive steps whose bound allowed 2 dt.
-        allowing_ = (level_ < a.max_level && 2 * r.dt <= r.dt_bound) ? allowing_ + 1 : 0;
+        allowing_ = (level_ < a.max_level && 2 * r.dt <= r.dt_bound && 2 * r.dt <= a.dt_max * (1 + 1e-12)) ? allowing_ + 1 : 0;
         if (allowing_ >= a.grow_after) set_level(level_ + 1);
       }
       return r;
@@ -160,6 +162,11 @@ IbStepReport ImmersedBoundary::attempt() {
   r.dt = dt;
   const double t = time();
   const Coupling coupling = options_.coupling;
+  for (TetheredPointSet* p : points_)  // constants that follow the step: set from this step's dt
+    if (const auto& rule = p->points().follow) {
+      const TetherConstants c = tether_constants_for_step(rule->sheet, dt, rule->gain);
+      p->points().k = c.k, p->points().eta = c.eta;
+    }
   // Keep X^n (and U): the whole Lagrangian state is restored on failure; the fluid's next state
   // goes into its other buffer and is accepted only at the end.
   for_each_set([](LagrangianSet& s) { s.save(); });

@@ -65,6 +65,10 @@ struct AdaptiveStep {
   double dt_min = 0;    ///< s
   int max_level = 0;    ///< dt <= 2^max_level dt_min
   int grow_after = 16;  ///< steps that allow a doubling before it is taken
+  /// No rung above this step (s): a guard from a bound eq. 5.4 does not see, such as tethered
+  /// points' explicit stability (sim/tether_stability.hpp; scene::build sets it for tethers with
+  /// fixed constants).
+  double dt_max = INFINITY;
 };
 
 /// Where the coupled step stands in time: the one clock of a run (the fluid's state carries t for

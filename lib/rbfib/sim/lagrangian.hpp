@@ -22,9 +22,11 @@
 #include "rbfib/grid/mac.hpp"
 #include "rbfib/ib/interaction.hpp"
 #include "rbfib/mechanics/energy.hpp"
+#include "rbfib/sim/tether_stability.hpp"
 #include "rbfib/surface/triangulation.hpp"
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -97,6 +99,13 @@ class CellBatchSet final : public LagrangianSet {
 /// U' = 0, in dyn per point (k_s in dyn/cm, eta in dyn s/cm: the seed's k = 2.5 dyn/cm and
 /// eta = 2.5e-7 dyn s/cm are per point, as its units say). Forces are spread from the points and
 /// velocities interpolated at them; no surface is reconstructed.
+/// Constants that follow the step (the seed's rule, sim/tether_stability.hpp): k and eta are set
+/// before every step from its dt, as large as the sheet's bound allows at the given gain.
+struct TetherRule {
+  TetherSheet sheet;  ///< the flat sheet the points form (the model of the bound)
+  double gain = 0.5;  ///< (eta + k dt/2) G1(dt), in (0, 1)
+};
+
 struct TetheredPoints {
   std::string name;
   dvec X;        ///< positions, 3n, X[d n + k] (cm)
@@ -107,6 +116,7 @@ struct TetheredPoints {
   /// uniform velocity u_c = (1 / (n dt)) sum_k (X'_k - X^_k), X^ = X^n + dt U (equal node areas),
   /// is added throughout the domain, so that the points return to their anchors on average.
   bool frame = false;
+  std::optional<TetherRule> follow;  ///< set: k and eta follow the step (then set before each step)
 };
 
 /// Tethered points as a Lagrangian set. `predicted`: whether the coupling evaluates the spring at
