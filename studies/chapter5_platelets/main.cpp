@@ -47,8 +47,10 @@ const double gaps_um[2] = {0.3, 0.5};  // the seed's two platelets
 /// (eq. 2.10 with the seed's k and eta), or the grid's own no-slip wall (the seed: "for modeling a
 /// healthy blood vessel, a flat wall suffices"). The grid wall lies at y = 0 and the top wall moves
 /// at 12 mm/s x 12/11, so that the platelets see the same gaps and the same shear as over the
-/// endothelium, which holds the fluid at rest across the 11 um below the top wall (1091/s).
-enum class Wall { tethers, grid };
+/// endothelium, which holds the fluid at rest across the 11 um below the top wall (1091/s). Or the
+/// endothelium whose k and eta follow the step by the seed's own rule at gain 0.5
+/// (sim/tether_stability.hpp), so that the ladder climbs.
+enum class Wall { tethers, grid, rule };
 
 struct Setup {
   int cells_x = 0, cells_y = 0;  // grid cells along x (and z) and y
@@ -57,29 +59,31 @@ struct Setup {
   double dt = 0, t_end = 0;      // s (dt: the fixed step, or with the ladder its lowest rung)
 };
 
-double wall_plane(Wall w) { return w == Wall::tethers ? 1 * units::um : 0.0; }
+double wall_plane(Wall w) { return w == Wall::grid ? 0.0 : 1 * units::um; }
 
 /// The two platelets over the flat wall (Sec. 5.2) as a scene, the flow started as the shear; with
-/// the grid wall the step climbs the seed's ladder (2^k dt, k = 0..4, by eq. 5.4).
+/// the grid wall or the rule the step climbs the seed's ladder (2^k dt, k = 0..4, by eq. 5.4).
 scene::Scene platelets_scene(const Setup& s, Wall w) {
   scene::Scene sc;
   sc.name = "chapter5_platelets";
   sc.grid = make_mac_grid(3, {s.cells_x, s.cells_y, s.cells_x}, {16 * units::um, 12 * units::um, 16 * units::um},
                           {MacBoundary::periodic, MacBoundary::dirichlet, MacBoundary::periodic});
-  sc.walls[1][1].velocity = {0, 0, w == Wall::tethers ? 12 * units::mm : 12 * units::mm * 12 / 11};
+  sc.walls[1][1].velocity = {0, 0, w == Wall::grid ? 12 * units::mm * 12 / 11 : 12 * units::mm};
   sc.initial_shear = true;
   sc.fluid = {1, 1 * units::cP};  // g/cm^3, P
   sc.fluid_options.integrator = TimeIntegrator::backward_forward_euler;
   sc.fluid_options.dt = s.dt;
   sc.t_end = s.t_end;
-  if (w == Wall::grid) sc.ib.adaptive = {true, s.dt, 4, 16};
+  if (w != Wall::tethers) sc.ib.adaptive = {true, s.dt, 4, 16, INFINITY};
   sc.ib.kernel = ib::Kernel::bspline3;
   sc.types.push_back(scene::cell_type("platelet", "platelet", s.sites, s.sites));
   for (int c = 0; c < 2; ++c) {  // lying flat, the short axis along y; the centre 0.5 um above the gap
     const double xz = (4 + 8 * c) * units::um;
     sc.cells.push_back({"platelet", {{xz, wall_plane(w) + (gaps_um[c] + 0.5) * units::um, xz}, {1, 0, 0}, 90 * (pi / 180)}});
   }
-  if (w == Wall::tethers) sc.point_sets.push_back({"endothelium", {false, 1, wall_plane(w), {s.endothelium, s.endothelium}}, 2.5, 2.5e-7});
+  if (w != Wall::grid)
+    sc.point_sets.push_back({"endothelium", {false, 1, wall_plane(w), {s.endothelium, s.endothelium}}, w == Wall::tethers ? 2.5 : 0,
+                             w == Wall::tethers ? 2.5e-7 : 0, w == Wall::rule ? 0.5 : 0});
   return sc;
 }
 
@@ -236,8 +240,9 @@ int main(int argc, char** argv) {
     P["endothelium"] = to_text(s.endothelium) + " x " + to_text(s.endothelium) + " tethered points at y = 1 um, k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm";
     P["gaps_um"] = Json::Array{Json(gaps_um[0]), Json(gaps_um[1])};
     P["walls"] = "run platelets: the endothelium above (the seed's); run platelets_grid_wall: no endothelium, the grid's no-slip wall at y = 0 "
-                 "with the platelets at the same gaps above it and the top wall at 12 mm/s x 12/11 (the same shear above the wall, 1091/s), "
-                 "the step on the seed's ladder dt = 2^k x " + to_text(s.dt / us) + " us, k = 0..4, by eq. 5.4";
+                 "with the platelets at the same gaps above it and the top wall at 12 mm/s x 12/11 (the same shear above the wall, 1091/s); "
+                 "run platelets_tether_rule: the endothelium with k and eta following the step (the seed's rule at gain 0.5); "
+                 "the last two on the seed's ladder dt = 2^k x " + to_text(s.dt / us) + " us, k = 0..4, by eq. 5.4";
     P["dt_us"] = s.dt / us;
     P["t_end_ms"] = s.t_end / ms;
     P["kernel_integrator_coupling"] = "B3 kernel, backward-forward Euler, the seed's coupling (a)-(g)";
@@ -257,23 +262,24 @@ int main(int argc, char** argv) {
     Json cost = st::table({"wall", "h_um", "dt_us", "steps", "seconds", "seconds_per_step", "steps_to_100ms", "hours_to_100ms", "hours_to_go"},
                           {"", "um", "us", "", "s", "s", "", "h", "h"});
     const st::Sitting sitting(opt);
-    for (const Wall w : {Wall::tethers, Wall::grid}) {
+    Json ts_rule = ts, sum_rule = sum;
+    for (const Wall w : {Wall::tethers, Wall::grid, Wall::rule}) {
       const bool seed = w == Wall::tethers;
-      const std::string id = seed ? "platelets" : "platelets_grid_wall", suffix = seed ? "" : "_grid_wall";
+      const std::string suffix = seed ? "" : w == Wall::grid ? "_grid_wall" : "_tether_rule", id = "platelets" + suffix;
       st::SceneRunHooks hooks;
       hooks.sample = [w](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib, wall_plane(w)); };
-      const std::string text = scene::to_yaml(platelets_scene(s, w), seed ? "chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)"
-                                                                          : "chapter5_platelets: two platelets over the grid's flat wall (Sec. 5.2)");
+      const std::string text = scene::to_yaml(platelets_scene(s, w), w == Wall::grid ? "chapter5_platelets: two platelets over the grid's flat wall (Sec. 5.2)"
+                                                                                       : "chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)");
       const run::Cadence every = seed ? run::Cadence{std::max(1L, total / 400)} : run::Cadence{0, s.t_end / 400};
-      const st::SceneRun run = st::run_scene(text, id, every, opt.keeps_runs(), opt, hooks, sitting.remaining() / (seed ? 2 : 1));
+      const st::SceneRun run = st::run_scene(text, id, every, opt.keeps_runs(), opt, hooks, sitting.remaining() / (seed ? 3 : w == Wall::grid ? 2 : 1));
       std::vector<double> t;
       double displacement = 0;  // the largest over the run; the slip at its end (at t = 0 it is the initial shear's, gdot x 1 um)
       for (const auto& r : run.samples) t.push_back(r[0]), displacement = std::max(displacement, r[r.size() - 2]);
       const double slip = run.samples.back().back();
       Platelet p[2];
       for (int c = 0; c < 2; ++c) {
-        p[c] = analyse(run.samples, t, c, gdot, seed ? ts : ts_grid);
-        report(p[c], c, t.back() - t.front(), seed ? sum : sum_grid, seed ? results["values"] : ignored, opt);
+        p[c] = analyse(run.samples, t, c, gdot, seed ? ts : w == Wall::grid ? ts_grid : ts_rule);
+        report(p[c], c, t.back() - t.front(), seed ? sum : w == Wall::grid ? sum_grid : sum_rule, seed ? results["values"] : ignored, opt);
       }
       Json& V = results["values"];
       V["endothelium_displacement_um" + suffix] = displacement / units::um;
@@ -284,7 +290,8 @@ int main(int argc, char** argv) {
       const double steps_100 = std::round(100 * ms / mean_dt);
       cost["rows"].push(row({id, 16.0 / s.cells_x, mean_dt / us, double(run.steps), run.seconds, sps, steps_100, steps_100 * sps / 3600,
                              (s.t_end - t_now) / mean_dt * sps / 3600}));
-      walls["rows"].push(row({seed ? "tethers (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm)" : "grid wall", t_now / ms, mean_dt / us,
+      walls["rows"].push(row({seed ? "tethers (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm)" : w == Wall::grid ? "grid wall" : "tethers following the step (gain 0.5)",
+                              t_now / ms, mean_dt / us,
                               s.dt * (seed ? 1 : 16) / us, double(run.steps), sps, steps_100 * sps / 3600, displacement / units::um, slip / units::um,
                               p[0].min_gap / units::um, p[1].min_gap / units::um, p[0].tilt.back() * 180 / pi, p[1].tilt.back() * 180 / pi,
                               p[0].tilt_rate / p[0].jeffery_rate, p[1].tilt_rate / p[1].jeffery_rate}));
@@ -300,6 +307,8 @@ int main(int argc, char** argv) {
     results["tables"]["platelets_grid_wall"] = ts_grid;
     results["tables"]["summary"] = sum;
     results["tables"]["summary_grid_wall"] = sum_grid;
+    results["tables"]["platelets_tether_rule"] = ts_rule;
+    results["tables"]["summary_tether_rule"] = sum_rule;
     results["tables"]["wall_treatments"] = walls;
     results["tables"]["cost"] = cost;
     st::write_results(opt, results);
