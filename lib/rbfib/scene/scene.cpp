@@ -1035,9 +1035,20 @@ std::string describe(const Scene& s) {
     o << "  cell type '" << t.spec.name << "' (preset " << t.preset << "): " << t.spec.data_sites.size() << " data / "
       << t.spec.sample_sites.size() << " sample sites; " << t.spec.model.describe() << "; " << n << " cell(s)\n";
   }
-  for (const PointSetEntry& p : s.point_sets)
-    o << "  tethered points '" << p.name << "': " << (p.surface.spiral ? p.surface.points : index_t(p.surface.lattice[0]) * p.surface.lattice[1]) << " points, k = " << p.k << " dyn/cm, eta = " << p.eta
-      << " dyn s/cm\n";
+  for (const PointSetEntry& p : s.point_sets) {
+    o << "  tethered points '" << p.name << "': " << (p.surface.spiral ? p.surface.points : index_t(p.surface.lattice[0]) * p.surface.lattice[1]) << " points, ";
+    if (p.follow_gain > 0) {
+      const sim::TetherConstants c = sim::tether_constants_for_step(tether_sheet(s, p), s.fluid_options.dt, p.follow_gain);
+      o << "k and eta following the step at gain " << p.follow_gain << " (at dt = " << s.fluid_options.dt << " s: k = " << c.k
+        << " dyn/cm, eta = " << c.eta << " dyn s/cm)\n";
+    } else {
+      o << "k = " << p.k << " dyn/cm, eta = " << p.eta << " dyn s/cm";
+      if (s.ib.adaptive.enabled && p.surface.normal == 1 && !s.grid.periodic(1))
+        o << "; their explicit bound " << sim::tether_dt_limit(tether_sheet(s, p), p.k, p.eta, s.ib.coupling == sim::Coupling::midpoint)
+          << " s caps the adaptive step";
+      o << "\n";
+    }
+  }
   return o.str();
 }
 
