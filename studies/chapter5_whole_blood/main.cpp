@@ -70,7 +70,12 @@ struct Setup {
   double turn, settle, mean_gap, window, flat_window;  // s; the runs' length over the bumpy and the flat wall
   int starts;
   std::vector<Wall> walls;
-  int every;  // steps between samples
+  int every;  // steps of dt between samples (with the ladder: that much simulated time)
+  // > 0: the seed's adaptive step, dt = 2^k dt for k = 0..ladder by eq. 5.4, with the endothelium's
+  // k and eta following the step by the seed's rule at this gain (sim/tether_stability.hpp).
+  int ladder = 0;
+  double tether_gain = 0;
+  run::Cadence samples() const { return ladder > 0 ? run::Cadence{0, every * dt} : run::Cadence{every}; }
 };
 
 /// A number for a log line: ten significant digits (0.4, not 0.40000000000000002).
@@ -106,6 +111,7 @@ scene::Scene whole_blood_scene(const Setup& s, const Wall& w, const std::vector<
   sc.fluid_options.integrator = TimeIntegrator::backward_forward_euler;
   sc.fluid_options.dt = s.dt;
   sc.t_end = t_end;
+  if (s.ladder > 0) sc.ib.adaptive = {true, s.dt, s.ladder, 16, INFINITY};
   sc.ib.kernel = ib::Kernel::bspline3;
   sc.start = start;
   const bool red_type = !red.empty() || !start.keep.empty();
@@ -113,7 +119,10 @@ scene::Scene whole_blood_scene(const Setup& s, const Wall& w, const std::vector<
   if (!platelets.empty()) sc.types.push_back(scene::cell_type("platelet", "platelet", s.plt_n, s.plt_n));
   for (const cells::Placement& p : red) sc.cells.push_back({"red cell", p, {0, 0, 0}});
   for (const cells::Placement& p : platelets) sc.cells.push_back({"platelet", p, {0, 0, 0}});
-  sc.point_sets.push_back({"endothelium", {true, 1, w.y0, {0, 0}, s.endothelium, w.bump}, 2.5, 2.5e-7});
+  if (s.tether_gain > 0)
+    sc.point_sets.push_back({"endothelium", {true, 1, w.y0, {0, 0}, s.endothelium, w.bump}, 0, 0, s.tether_gain});
+  else
+    sc.point_sets.push_back({"endothelium", {true, 1, w.y0, {0, 0}, s.endothelium, w.bump}, 2.5, 2.5e-7});
   return sc;
 }
 
@@ -289,15 +298,21 @@ void WholeBlood::wall(const Wall& w, std::size_t wi) {
                                vol.empty() ? NAN : vol[0] / std::pow(um, 3)};
   };
   const std::string start_file = opt.out_dir + "/start_" + w.name + "_";
-  ih.after_step = [&](const sim::ImmersedBoundary& ib) {
+  ih.record = [&](const sim::ImmersedBoundary& ib, run::SeriesSet& series) {  // at the first step reaching each starting time (ticks of dt)
     for (std::size_t k = 0; k < starts.size(); ++k)
-      if (ib.step_count() == start_steps[k]) io::write_checkpoint(start_file + to_text(k) + ".h5", init_text, ib);
+      if (std::lround(ib.time() / s.dt) >= start_steps[k] && !series.count("start_" + to_text(k))) {
+        io::write_checkpoint(start_file + to_text(k) + ".h5", init_text, ib);
+        series["start_" + to_text(k)].rows = {{ib.time()}};
+      }
   };
   ih.at_start = [&](const sim::ImmersedBoundary& ib) { v_ref = ib.batch(0).type().reference_volume() / std::pow(um, 3); };
-  const st::SceneRun init = st::run_scene(init_text, "init_" + w.name, run::Cadence{s.every}, opt.keeps_runs(), opt, ih,
+  const st::SceneRun init = st::run_scene(init_text, "init_" + w.name, s.samples(), opt.keeps_runs(), opt, ih,
                                              sitting.remaining() / double(s.walls.size() - wi));  // shared by the inits to come
   st::record_run(results, "init_" + w.name, init.progress(starts.back()));
-  add_cost("init " + w.name, double(init.steps), double(std::lround(starts.back() / s.dt)), init.seconds_per_step());
+  // Steps needed at the mean step so far (the ladder's), or at dt.
+  const double init_t = init.samples.empty() ? 0 : init.samples.back().at(0), mean_dt = init.steps > 0 ? init_t / double(init.steps) : s.dt;
+  add_cost("init " + w.name, double(init.steps), s.ladder > 0 ? std::round(starts.back() / mean_dt) : double(std::lround(starts.back() / s.dt)),
+           init.seconds_per_step());
   if (!init.stopped.empty()) throw NumericalError(Cause::solver, "the init run (" + w.name + ") stopped: " + init.stopped);
   for (const auto& r : init.samples) closest_red = std::min(closest_red, r[2] / s.h);
   if (!init.finished) {
@@ -307,10 +322,10 @@ void WholeBlood::wall(const Wall& w, std::size_t wi) {
     for (std::size_t k = 0; k < starts.size(); ++k)
       for (bool with_red : {true, false})
         if (with_red || w.bump > 0) {  // the seed removes the red cells over the bumpy wall only
-          add_cost(run_tag(w, with_red, k) + " (to come)", 0, std::round(window / s.dt), init.seconds_per_step());
+          add_cost(run_tag(w, with_red, k) + " (to come)", 0, std::round(window / mean_dt), init.seconds_per_step());
           st::record_run(results, run_tag(w, with_red, k), st::RunProgress{false, 0, window, 0, init.seconds_per_step(), ""});
         }
-    st::log(opt, w.name + ": init run at t = " + to_text(double(init.steps) * s.dt / ms) + " ms of " + to_text(starts.back() / ms) +
+    st::log(opt, w.name + ": init run at t = " + to_text(init_t / ms) + " ms of " + to_text(starts.back() / ms) +
                      " ms; continued at the next start");
     return;
   }
@@ -328,7 +343,8 @@ void WholeBlood::wall(const Wall& w, std::size_t wi) {
                                 double(placed.attempts.at(0)), double(placed.attempts.at(1)), double(placed.refused_red_cells),
                                 double(placed.refused_surface), placed.gaps[0] / um, placed.gaps[1] / um, start_list}));
     for (bool with_red : {true, false})
-      if (with_red || w.bump > 0) run_from(w, box, k, with_red, starts[k], start_file + to_text(k) + ".h5", start, placed.platelets, tracked);
+      if (with_red || w.bump > 0)  // with the ladder the start lies at the first step reaching its time
+        run_from(w, box, k, with_red, s.ladder > 0 ? start.state.clock.t : starts[k], start_file + to_text(k) + ".h5", start, placed.platelets, tracked);
   }
 }
 
@@ -344,18 +360,25 @@ void WholeBlood::run_from(const Wall& w, const Domain& box, std::size_t k, bool 
   h.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib, with_red, box, tracked); };
   // Snapshots for ParaView (the first starting state's runs): at the start, every tenth of the run, at the end.
   std::unique_ptr<io::SnapshotWriter> writer;
-  const long snapshot_every = std::max(1L, std::lround(window / s.dt) / 10);
+  long last_snapshot = -1;
+  const long snapshot_every = std::max(1L, std::lround(window / s.dt) / 10);  // in ticks of dt from the start
+  const long start_tick = std::lround(t_start / s.dt);
   if (k == 0)
     h.after_step = [&](const sim::ImmersedBoundary& ib) {
-      if (!writer) writer = std::make_unique<io::SnapshotWriter>(opt.out_dir + "/snapshots_" + tag, ib), writer->resume(ib.time());
-      if ((ib.step_count() - start.state.clock.step) % snapshot_every == 0) writer->write(ib);
+      const long ticks = std::lround(ib.time() / s.dt) - start_tick;  // a snapshot at the first step of each tenth
+      if (!writer) {  // continued: the tenths before this step are written
+        writer = std::make_unique<io::SnapshotWriter>(opt.out_dir + "/snapshots_" + tag, ib), writer->resume(ib.time());
+        last_snapshot = ticks > 0 ? (ticks - 1) / snapshot_every : -1;
+      }
+      if (ticks / snapshot_every != last_snapshot) last_snapshot = ticks / snapshot_every, writer->write(ib);
     };
-  const st::SceneRun run = st::run_scene(text, tag, run::Cadence{s.every}, opt.keeps_runs(), opt, h, sitting.remaining());
+  const st::SceneRun run = st::run_scene(text, tag, s.samples(), opt.keeps_runs(), opt, h, sitting.remaining());
   const long done = run.steps - start.state.clock.step;  // the run's own span: steps from its starting time
   st::RunProgress progress = run.progress(t_end);
   progress.t -= t_start, progress.t_end = window, progress.steps = done;
   st::record_run(results, tag, progress);
-  add_cost(tag, double(done), double(std::lround(window / s.dt)), run.seconds_per_step());
+  const double mean_dt = done > 0 ? progress.t / double(done) : s.dt;  // the ladder's mean step so far, or dt
+  add_cost(tag, double(done), s.ladder > 0 ? std::round(window / mean_dt) : double(std::lround(window / s.dt)), run.seconds_per_step());
   if (!run.finished) {
     (with_red ? red_runs_done : free_runs_done) = false;
     if (with_red && w.bump == 0) flat_runs_done = false;
@@ -505,7 +528,9 @@ int main(int argc, char** argv) {
     const st::Options opt = st::parse_command_line(argc, argv, "chapter5_whole_blood",
                                                    "Sec. 5.2: whole blood over a flat and a bumpy endothelium (Figs. 5.4-5.6)");
     const bool full = opt.scale == st::Scale::full;
-    const Setup s = full ? Setup{0.2 * um, 50 * units::ns, 2500, 10000, 900, 16000, 7.2 * ms, 17 * ms, 3 * ms, 40 * ms, 60 * ms, 4, {flat, bumpy}, 400}
+    // Full scale: the seed's ladder with the endothelium's constants following the step (gain 0.5;
+    // docs/derivations/tether_stability, chapter5_tether_stability); quick: the seed's fixed ones.
+    const Setup s = full ? Setup{0.2 * um, 50 * units::ns, 2500, 10000, 900, 16000, 7.2 * ms, 17 * ms, 3 * ms, 40 * ms, 60 * ms, 4, {flat, bumpy}, 400, 4, 0.5}
                          : Setup{0.4 * um, 100 * units::ns, 400, 1600, 400, 4096, 20 * us, 30 * us, 10 * us, 80 * us, 80 * us, 1, {bumpy}, 10};
     Json results = st::make_results(opt);
     Json& P = results["parameters"];
@@ -515,7 +540,10 @@ int main(int argc, char** argv) {
     P["dt_ns"] = s.dt / units::ns;
     P["red_cells"] = "8 at " + to_text(s.rbc_nd) + " / " + to_text(s.rbc_ns) + " sites (Skalak, bending, dissipation)";
     P["platelets"] = "2 at " + to_text(s.plt_n) + " / " + to_text(s.plt_n) + " sites (neo-Hookean, bending about the reference curvature)";
-    P["endothelium"] = to_text(s.endothelium) + " points on the toroidal spiral (Appendix B), flat y = 1 um or bumpy y = 0.75 um + 1 um cos^2(theta - phi) sin^2(phi/2) (eq. 5.5); k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm";
+    P["endothelium"] = to_text(s.endothelium) + " points on the toroidal spiral (Appendix B), flat y = 1 um or bumpy y = 0.75 um + 1 um cos^2(theta - phi) sin^2(phi/2) (eq. 5.5); " +
+                       (s.tether_gain > 0 ? "k and eta following the step by the seed's rule at gain " + to_text(s.tether_gain) + " (sim/tether_stability.hpp)"
+                                          : std::string("k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm"));
+    if (s.ladder > 0) P["step"] = "the seed's adaptive step: dt = 2^k x " + to_text(s.dt / units::ns) + " ns, k = 0.." + to_text(s.ladder) + ", by eq. 5.4";
     P["procedure"] = "wall turning over " + to_text(s.turn / us) + " us, settling " + to_text(s.settle / us) + " us, " + to_text(s.starts) +
                      " starting time(s) with exponential gaps of mean " + to_text(s.mean_gap / us) + " us, runs of " + to_text(s.window / us) +
                      " us" + (full ? " over the bumpy wall and " + to_text(s.flat_window / us) + " us over the flat one" : "");
