@@ -29,7 +29,7 @@
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/series.hpp"
 #include "rbfib/core/units.hpp"
-#include "rbfib/ib/interaction.hpp"
+#include "rbfib/sim/tether_motion.hpp"
 #include "rbfib/scene/scene.hpp"
 
 #include <cmath>
@@ -87,31 +87,8 @@ scene::Scene platelets_scene(const Setup& s, Wall w) {
   return sc;
 }
 
-/// The endothelium's largest displacement from its anchors, and the RMS slip: the flow velocity
-/// interpolated at the anchors (where the wall holds it at rest), 0 for the grid's wall.
-std::array<double, 2> wall_motion(const sim::ImmersedBoundary& ib) {
-  if (ib.point_sets() == 0) return {0, 0};
-  const sim::TetheredPoints& e = ib.points(0);
-  const host_vector<double> Xe(e.X.begin(), e.X.end()), A(e.anchors.begin(), e.anchors.end());
-  const std::size_t m = Xe.size() / 3;
-  double worst = 0;
-  for (std::size_t i = 0; i < m; ++i) {
-    double d2 = 0;
-    for (int d = 0; d < 3; ++d) d2 += std::pow(Xe[d * m + i] - A[d * m + i], 2);
-    worst = std::max(worst, std::sqrt(d2));
-  }
-  const MacOperators& ops = ib.fluid().operators();
-  ib::Interaction probe({ops.component_box(0), ops.component_box(1), ops.component_box(2)}, ib::Kernel::bspline3);
-  dvec U;
-  probe.interpolate(e.anchors, ib.fluid_state().u, U);
-  const host_vector<double> Uh(U.begin(), U.end());
-  double sum = 0;
-  for (double u : Uh) sum += u * u;
-  return {worst, std::sqrt(sum / double(m))};
-}
-
 /// One sample: t, then per platelet (centre 3, short axis 3, gap, volume), then the endothelium's
-/// largest displacement from its anchors and the RMS slip at them (wall_motion).
+/// largest displacement from its anchors and the RMS slip at them (sim/tether_motion.hpp).
 std::vector<double> sample(const sim::ImmersedBoundary& ib, double wall_y) {
   const cells::Batch& b = ib.batch(0);
   const std::vector<double> X = b.positions_host();
@@ -127,8 +104,8 @@ std::vector<double> sample(const sim::ImmersedBoundary& ib, double wall_y) {
     // NaN until a force call has measured it (a state just restored from a checkpoint).
     row.push_back(ib.diagnostics(0).volume.empty() ? NAN : ib.diagnostics(0).volume[std::size_t(c)]);
   }
-  const std::array<double, 2> motion = wall_motion(ib);
-  row.insert(row.end(), motion.begin(), motion.end());
+  const sim::TetherMotion motion = ib.point_sets() > 0 ? sim::tether_motion(ib, 0) : sim::TetherMotion{};  // none over the grid wall
+  row.insert(row.end(), {motion.max_displacement, motion.slip_rms});
   return row;
 }
 

@@ -17,6 +17,7 @@
 // Run:   build/studies/study_chapter5_tether_stability --scale quick --out runs/chapter5_tether_stability
 #include "common/study.hpp"
 #include "rbfib/core/error.hpp"
+#include "rbfib/core/series.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/scene/scene.hpp"
 #include "rbfib/sim/tether_stability.hpp"
@@ -115,18 +116,6 @@ Member run_sheet(const Case& c, double dt, double k, double eta, int steps, bool
   return m;
 }
 
-/// dt* where |lambda| crosses 1, interpolated in log dt between the first unstable step and the one
-/// before it; NaN when the sweep does not bracket it.
-double crossing(const std::vector<double>& dts, const std::vector<double>& lambdas) {
-  for (std::size_t i = 1; i < dts.size(); ++i)
-    if (lambdas[i] > 1 && lambdas[i - 1] <= 1) {
-      if (!std::isfinite(lambdas[i])) return dts[i - 1];
-      const double f = (1 - lambdas[i - 1]) / (lambdas[i] - lambdas[i - 1]);
-      return std::exp(std::log(dts[i - 1]) + f * (std::log(dts[i]) - std::log(dts[i - 1])));
-    }
-  return NAN;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -163,7 +152,7 @@ int main(int argc, char** argv) {
                                 sim::tether_gain(c.sheet(), c.k, c.eta, dt_ns * ns, false), m.seconds_per_step}));
         if (c.id.rfind("seed_", 0) == 0 && dt_ns == 50) V["lambda_50ns_" + c.id] = m.lambda;
       }
-      const double measured = crossing(dts, lambdas), model = sim::tether_dt_limit(c.sheet(), c.k, c.eta, false) / ns;
+      const double measured = rising_crossing_log(dts, lambdas, 1.0), model = sim::tether_dt_limit(c.sheet(), c.k, c.eta, false) / ns;
       thresholds["rows"].push(row({c.id, c.n_per_um2(), c.mu / cP, c.k, c.eta, measured, model, measured / model}));
       V["dt_star_over_model_" + c.id] = measured / model;
       st::log(opt, c.id + ": dt* " + to_text(measured) + " ns, model " + to_text(model) + " ns");

@@ -48,3 +48,13 @@ TEST(Series, SuccessiveOrderIsExactForAPowerLawInH) {
     }
   EXPECT_TRUE(std::isnan(successive_order(0.5, 1)));  // errors growing with refinement
 }
+
+TEST(Series, RisingCrossingInLogX) {
+  // y rises through 1 between x = 10 and 40 (0.5 -> 1.5): halfway in log x, x = 20.
+  EXPECT_NEAR(rising_crossing_log({5, 10, 40}, {0.2, 0.5, 1.5}, 1.0), 20.0, 1e-12);
+  // The sample above is not finite: the last one at or below.
+  EXPECT_EQ(rising_crossing_log({5, 10, 40}, {0.2, 0.5, INFINITY}, 1.0), 10.0);
+  // Never rises through it (or starts above it): NaN.
+  EXPECT_TRUE(std::isnan(rising_crossing_log({5, 10}, {0.2, 0.5}, 1.0)));
+  EXPECT_TRUE(std::isnan(rising_crossing_log({5, 10}, {1.2, 1.5}, 1.0)));
+}

@@ -39,6 +39,16 @@ double zero_crossing(const std::vector<double>& t, const std::vector<double>& x,
   return t[i - 1] + (t[i] - t[i - 1]) * x[i - 1] / (x[i - 1] - x[i]);
 }
 
+double rising_crossing_log(const std::vector<double>& x, const std::vector<double>& y, double level) {
+  for (std::size_t i = 1; i < x.size() && i < y.size(); ++i)
+    if (y[i] > level && y[i - 1] <= level) {
+      if (!std::isfinite(y[i])) return x[i - 1];
+      const double f = (level - y[i - 1]) / (y[i] - y[i - 1]);
+      return std::exp(std::log(x[i - 1]) + f * (std::log(x[i]) - std::log(x[i - 1])));
+    }
+  return NAN;
+}
+
 double mean_interval(const std::vector<double>& times) {
   return times.size() < 2 ? NAN : (times.back() - times.front()) / double(times.size() - 1);
 }

@@ -23,6 +23,11 @@ double longest_interval(const std::vector<double>& t, const std::vector<bool>& f
 /// Where x(t), sampled at t[i-1] and t[i], passes zero, linearly between the two samples.
 double zero_crossing(const std::vector<double>& t, const std::vector<double>& x, std::size_t i);
 
+/// The first x at which y(x), sampled at increasing x > 0, rises through `level`: interpolated
+/// linearly in log x between the last sample at or below it and the first above; that last sample's
+/// x when the one above is not finite (grown past all bounds); NaN when no pair brackets it.
+double rising_crossing_log(const std::vector<double>& x, const std::vector<double>& y, double level);
+
 /// Mean interval between successive entries of `times` (NaN for fewer than two).
 double mean_interval(const std::vector<double>& times);
 

@@ -128,6 +128,7 @@ class ImmersedBoundary {
   /// mismatched sizes, non-finite values or negative constants.
   index_t add(TetheredPoints points);
   const TetheredPoints& points(index_t p) const { return points_.at(p)->points(); }
+  const IbOptions& options() const { return options_; }
   index_t point_sets() const { return index_t(points_.size()); }
   /// Adds an LDSM shell; returns its index. Throws InputError naming the field for bad input.
   index_t add(LdsmShell shell);
