@@ -352,9 +352,10 @@ int main(int argc, char** argv) {
     describe(results["parameters"], s, cases);
 
     // ---- 2. The runs: the dt scan's short runs first (at full scale in the first sitting), then the
-    // cases, sharing what is left of each sitting ---------------------------------------------------
+    // cases in their order, each to its end or the sitting's (one finished run is worth more than
+    // three that progressed) ------------------------------------------------------------------------
     const st::Sitting sitting(opt);
-    std::size_t jobs_left = scan_steps.size() + 1 + cases.size();
+    std::size_t jobs_left = scan_steps.size() + 2;  // the scan's runs share the sitting with the first case
     std::vector<Run> members;
     for (double d : scan_steps)
       members.push_back(shear_run(s, {"", scanned.rate, scanned.mu, d * us, t_scan, 0}, 40, opt, "scan_", sitting.remaining() / double(jobs_left--), t_diff));
@@ -364,7 +365,7 @@ int main(int argc, char** argv) {
                                     sitting.remaining() / double(jobs_left--), t_diff);
     Tables T;
     for (const Case& c : cases) {
-      const Run r = shear_run(s, c, 400, opt, "", sitting.remaining() / double(jobs_left--), own && c.id == scanned.id ? t_diff : 0);
+      const Run r = shear_run(s, c, 400, opt, "", sitting.remaining(), own && c.id == scanned.id ? t_diff : 0);
       st::record_run(results, c.id, r.progress());
       tabulate(results, T, r, opt);
       if (own && c.id == scanned.id) members.push_back(r);  // the dt scan's member at the run's own step
