@@ -48,6 +48,7 @@ def parse(argv):
     k.add_argument("target", help="a study name, a chapter or 'all'")
     k.add_argument("--scale", default="full", help="full (default) or quick")
     k.add_argument("--out", default=os.path.join(ROOT, "runs"), help="where run directories are")
+    k.add_argument("--max-mib", type=float, default=32.0, help="checkpoints larger than this (MiB) are not kept (default 32)")
     sub.add_parser("list", help="list the studies")
     a = p.parse_args(argv)
     if a.command in ("run", "keep") and a.scale not in ("quick", "full"):
@@ -107,13 +108,21 @@ def checkpoints(folder):
     return sorted(out)
 
 
-def keep_study(name, scale, runs):
-    """Copies the checkpoints of runs/<name>/<scale> into kept/<name>/<scale> (replacing older copies)."""
+def keep_study(name, scale, runs, max_mib=32.0):
+    """Copies the checkpoints of runs/<name>/<scale> into kept/<name>/<scale> (replacing older copies).
+
+    A checkpoint larger than max_mib is not kept (the repository is no place for a grid of the seed's
+    size): it is named, and its run continues only where it was written."""
     src, dst = os.path.join(runs, name, scale), os.path.join(KEPT, name, scale)
     files = checkpoints(src)
     if not files:
         print(f"harness: {name}: no checkpoints under {src}")
         return
+    large = [rel for rel in files if os.path.getsize(os.path.join(src, rel)) > max_mib * 2**20]
+    for rel in large:
+        print(f"harness: {name}: not kept: {rel} ({os.path.getsize(os.path.join(src, rel)) / 2**20:.0f} MiB, "
+              f"above --max-mib {max_mib:g}); its run continues only on this machine")
+    files = [rel for rel in files if rel not in large]
     for rel in files:
         os.makedirs(os.path.dirname(os.path.join(dst, rel)), exist_ok=True)
         shutil.copy2(os.path.join(src, rel), os.path.join(dst, rel))
@@ -232,7 +241,7 @@ def main(argv):
         selected = catalog.select(ROOT, args.target)
         if args.command == "keep":
             for m in selected:
-                keep_study(m["name"], args.scale, args.out)
+                keep_study(m["name"], args.scale, args.out, args.max_mib)
             return 0
         summaries, broken = [], []
         for m in selected:

@@ -1,6 +1,8 @@
 #pragma once
-// The message of the exception of type E that fn throws ("" when it throws none), for tests that
-// check what an error names.
+// The message of the exception of type E that fn throws ("" when it throws none), and the field an
+// InputError names, for tests that check what an error names.
+#include "rbfib/core/error.hpp"
+
 #include <functional>
 #include <string>
 
@@ -12,6 +14,16 @@ std::string message_of(const std::function<void()>& fn) {
     fn();
   } catch (const E& e) {
     return e.what();
+  }
+  return "";
+}
+
+/// The field named by the InputError that fn throws ("" when it throws none).
+inline std::string field_of(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const InputError& e) {
+    return e.field();
   }
   return "";
 }

@@ -272,13 +272,13 @@ class KeptCheckpoints(unittest.TestCase):
             runs, kept = os.path.join(tmp, "runs"), os.path.join(tmp, "kept")
             src = os.path.join(runs, "study_x", "full", "grid_a")
             os.makedirs(src)
-            for name, text in (("checkpoint.h5", "state 1"), ("results.json", "{}")):
+            for name, text in (("checkpoint.h5", "state 1"), ("results.json", "{}"), ("large.h5", "x" * 2**20)):
                 with open(os.path.join(src, name), "w") as f:
                     f.write(text)
             old = cli.KEPT
             cli.KEPT = kept
             try:
-                cli.keep_study("study_x", "full", runs)
+                cli.keep_study("study_x", "full", runs, max_mib=0.5)  # the 1 MiB checkpoint is not kept
                 self.assertEqual(cli.checkpoints(os.path.join(kept, "study_x", "full")), [os.path.join("grid_a", "checkpoint.h5")])
                 fresh = os.path.join(tmp, "fresh")
                 cli.continue_from_kept("study_x", "full", fresh)

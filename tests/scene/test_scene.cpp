@@ -143,12 +143,7 @@ TEST(Scene, ASceneBuildsTheSameStepAsTheSameSetupInCode) {
 
 /// The field named by the InputError of parsing `yaml` ("" if none).
 std::string field_of(const std::string& yaml) {
-  try {
-    build(parse_scene(yaml, "mutant"));
-  } catch (const InputError& e) {
-    return e.field();
-  }
-  return "";
+  return rbfib::testing::field_of([&] { build(parse_scene(yaml, "mutant")); });
 }
 
 std::string replaced(std::string s, const std::string& from, const std::string& to) {

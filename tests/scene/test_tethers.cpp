@@ -43,12 +43,7 @@ std::string with(const std::string& tethers) {
 }
 
 std::string field_of(const std::string& yaml) {
-  try {
-    build(parse_scene(yaml, "sheet"));
-  } catch (const InputError& e) {
-    return e.field();
-  }
-  return "";
+  return rbfib::testing::field_of([&] { build(parse_scene(yaml, "sheet")); });
 }
 
 }  // namespace
