@@ -17,6 +17,7 @@
 
 #include "common/study.hpp"
 #include "common/tables.hpp"
+#include "quadratics.hpp"
 #include "rbfib/fluid/diffusion.hpp"
 #include "rbfib/fluid/grid_norms.hpp"
 #include "rbfib/grid/boundary_values.hpp"
@@ -28,6 +29,7 @@ namespace st = rbfib::study;
 using st::Json;
 using st::row;
 using BC = BoundaryCondition;
+using namespace rbfib::appendix_a;
 
 constexpr double kTableUnit = 1e-6;  // the tables' errors are in units of 1e-6
 
@@ -109,94 +111,6 @@ Json fig_a1_profiles(bool dirichlet, Correction corr, const std::vector<int>& st
     for (auto& p : prof) r.push_back(p[i]);
     t["rows"].push(Json(r));
   }
-  return t;
-}
-
-// ---- Quadratic exactness in 2D/3D for every staggering and boundary type -------------------------
-struct Quadratic {
-  double operator()(double x, double y, double z) const {
-    return 0.3 + x - 2 * y + 0.5 * z + 1.2 * x * x - 0.7 * y * y + 0.9 * z * z + 0.4 * x * y - 0.6 * y * z +
-           0.25 * x * z;
-  }
-  double grad(int d, double x, double y, double z) const {
-    if (d == 0) return 1 + 2.4 * x + 0.4 * y + 0.25 * z;
-    if (d == 1) return -2 - 1.4 * y + 0.4 * x - 0.6 * z;
-    return 0.5 + 1.8 * z - 0.6 * y + 0.25 * x;
-  }
-  double laplacian(int dims) const { return 2.4 - (dims > 1 ? 1.4 : 0.0) + (dims > 2 ? 1.8 : 0.0); }
-};
-
-// gamma = alpha u + beta du/dnu for a function with gradient, on the box's faces.
-template <class F>
-BoundaryData boundary_data_of(const Box& box, const F& u) {
-  return robin_boundary_data(box, u, [&](int d, double x, double y, double z) { return u.grad(d, x, y, z); });
-}
-
-struct QuadraticCheck {
-  double operator_error = 0;  // max |L q + B gamma - I~ Lap q| / (max|q| / h_min^2)
-  double steady_error = 0;    // max |x - q| / max |q| for the Helmholtz solve with solution q
-  int cg_iterations = 0;
-};
-
-QuadraticCheck check_quadratic(const Box& box, Correction corr) {
-  const Quadratic q;
-  StaggeredLaplacian L(box, corr);
-  const dvec u = sample(box, q);
-  const BoundaryData gamma = boundary_data_of(box, q);
-  dvec Lu, target;
-  L.apply(u, Lu);
-  L.add_boundary(gamma, Lu, 1.0);
-  L.apply_identity(dvec(u.size(), q.laplacian(box.dims)), target);
-  blas::axpy(-1.0, target, Lu);
-  double hmin = 1e300;
-  for (int d = 0; d < box.dims; ++d) hmin = std::min(hmin, box.axes[d].h());
-  QuadraticCheck c;
-  const double qmax = blas::norm_inf(u);
-  c.operator_error = blas::norm_inf(Lu) / (qmax / (hmin * hmin));
-  // Backward-Euler Helmholtz solve with the quadratic as solution, from a zero initial guess:
-  // (I~ - k L) x = I~ (q - k Lap q) + k B gamma has x = q exactly when L q + B gamma = I~ Lap q.
-  const double k = hmin;
-  dvec b, Iu;
-  L.apply_identity(dvec(u.size(), -k * q.laplacian(box.dims)), b);
-  L.apply_identity(u, Iu);
-  blas::axpy(1.0, Iu, b);
-  L.add_boundary(gamma, b, k);
-  dvec x(u.size(), 0.0);
-  auto helmholtz = [&](const dvec& in, dvec& out) { L.apply(in, out, 1.0, -k); };
-  c.cg_iterations = conjugate_gradient(helmholtz, b, x, SolverOptions{"helmholtz (quadratic)", 1e-14, 2000}).iterations;
-  blas::axpy(-1.0, u, x);
-  c.steady_error = blas::norm_inf(x) / qmax;
-  return c;
-}
-
-// Every staggering g in {1/2, 1, 1/4} and boundary type in x and y, corrected and not; z is Neumann
-// at cell centres (uncorrected-exact) so every x/y case is seen in 3D too.
-Json quadratics_table() {
-  const std::pair<const char*, BC> boundaries[] = {
-      {"dirichlet", BC::dirichlet()}, {"neumann", BC::neumann()}, {"robin(1,-0.1)", BC::robin(1.0, -0.1)}};
-  Json t =
-      st::table({"dims", "g_x", "g_y", "bc_x", "bc_y", "corrected", "operator_error", "steady_error", "cg_iterations"});
-  for (int dims : {2, 3})
-    for (double gx : {0.5, 1.0, 0.25})
-      for (double gy : {0.5, 1.0, 0.25})
-        for (const auto& [nx, bx] : boundaries)
-          for (const auto& [ny, by] : boundaries)
-            for (Correction corr : {Correction::appendix_a, Correction::none}) {
-              Box box;
-              box.dims = dims;
-              box.axes[0] = Axis{9, 1.0, gx, bx, bx, 0.0};
-              box.axes[1] = Axis{7, 0.8, gy, by, by, -0.3};
-              box.axes[2] = Axis{6, 0.6, 0.5, BC::neumann(), BC::neumann(), 0.1};
-              QuadraticCheck c;
-              try {
-                c = check_quadratic(box, corr);
-              } catch (const NumericalError&) {
-                if (corr == Correction::appendix_a) throw;  // the corrected solve must always converge
-                c = QuadraticCheck{check_quadratic(box, Correction::none).operator_error, -1.0, -1};
-              }
-              t["rows"].push(row({dims, gx, gy, nx, ny, corr == Correction::appendix_a ? 1 : 0, c.operator_error,
-                                  c.steady_error, c.cg_iterations}));
-            }
   return t;
 }
 

@@ -27,7 +27,7 @@
 // Run:  build/studies/study_chapter3_capillary --scale quick --out runs/chapter3_capillary/quick
 //       (or python3 -m harness run chapter3_capillary --scale quick)
 #include "common/capillary.hpp"
-#include "common/point_pictures.hpp"
+#include "measures.hpp"
 #include "rbfib/surface/shape_measures.hpp"
 
 #include <algorithm>
@@ -70,48 +70,6 @@ std::vector<CellCase> variant_cases() {
           {"SHVD_m1024_kb0", chapter3::Method::shvd, 31, 0.0}};
 }
 
-/// What the checks need from a finished cell run (CGS).
-struct Summary {
-  double v_cell, cv, std, rms, bumps, roughness, back, noise;
-};
-
-/// The kept view at time t (the nearest when none is exactly there).
-const View* view_at(const Run& r, double t) {
-  const View* best = nullptr;
-  for (const View& v : r.views())
-    if (!best || std::abs(v.t - t) < std::abs(best->t - t)) best = &v;
-  return best && std::abs(best->t - t) <= 1e-9 ? best : nullptr;
-}
-
-/// The mean of the view's sites (the centre of the pictures; the volume centroid is in the series).
-std::array<double, 3> mean_point(const View& v) {
-  const std::size_t n = v.X.size() / 3;
-  std::array<double, 3> c{0, 0, 0};
-  for (int d = 0; d < 3; ++d) {
-    for (std::size_t i = 0; i < n; ++i) c[d] += v.X[d * n + i];
-    c[d] /= double(n);
-  }
-  return c;
-}
-
-/// The capillary wall's trace in the plane y = 0: z = +-R for x in [x0, x1] (um), shifted by oy.
-void wall_rows(std::vector<st::PictureRow>& t, const std::string& panel, const Model& m, double oy) {
-  for (int s : {-1, 1})
-    for (int i = 0; i <= 64; ++i)
-      t.push_back({panel, "capillary wall", (m.x0_cap + (m.x1_cap - m.x0_cap) * i / 64) / um + 0, s * m.R_cap / um + oy});
-}
-
-std::string time_label(double t) {
-  std::ostringstream l;
-  l << "t = " << t << " s";
-  return l.str();
-}
-
-st::Json picture(const char* a, const char* b, std::vector<st::PictureRow> rows) {
-  st::Json t = st::table({"panel", "label", a, b}, {"", "", "um", "um"});
-  st::push_sorted(t, std::move(rows));
-  return t;
-}
 
 /// The cell runs: each run's row of a runs table, the main runs' series, the measures the checks
 /// need (front curvature, asymmetry and bumps, |f| on the back) and the figures' rows.
@@ -227,81 +185,9 @@ class CellRuns {
     if (main) main_[cc.label] = std::move(run);
   }
 
-  double get(const std::string& label, double Summary::*field) const {
-    auto it = summary_.find(label);
-    return it == summary_.end() ? NAN : it->second.*field;
-  }
+  const std::map<std::string, Summary>& summaries() const { return summary_; }
 
-  void figures(st::Json& T, bool full) const {
-    const double ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0}, ez[3] = {0, 0, 1}, mx[3] = {-1, 0, 0}, my[3] = {0, -1, 0};
-    const int cap = full ? 900 : 700;  // sites per panel (results.json stays about 1 MB)
-    std::vector<st::PictureRow> rows;
-    // Fig. 6: side views (from -y) at several times, absolute x; the capillary's wall.
-    int p = 0;
-    for (const std::string lab : {"LDSM_kb0", "SHVD_m625_kb0", "SHVD_m400_kb0"}) {
-      const Run& r = *main_.at(lab);
-      const double oy = -14.0 * p++;
-      wall_rows(rows, lab, r.model(), oy);
-      for (double t : {0.0, 0.01, 0.025, 0.05})
-        if (const View* v = view_at(r, t))
-          st::project(rows, lab, v->X, v->normal, my, ex, ez, nullptr, um, 0, oy, cap / 2,
-                      [l = time_label(t)](std::size_t) { return l; });
-    }
-    T["fig6"] = picture("x_um", "z_um", std::move(rows));
-    // Fig. 7: |force density| on the front (from +x), side (from -y), back (from -x) at the end.
-    std::vector<double> all, edges;
-    for (const std::string lab : {"LDSM_kb0", "SHVD_m400_kb0"})
-      if (!main_.at(lab)->views().empty()) {
-        const std::vector<double>& f = main_.at(lab)->views().back().f;
-        all.insert(all.end(), f.begin(), f.end());
-      }
-    std::sort(all.begin(), all.end());
-    const double top = all.empty() ? 1 : all[std::size_t(0.95 * double(all.size() - 1))] * 1e-3;
-    const double step = std::max(1e-3, std::round(top / 5 * 1000) / 1000);
-    for (int k = 0; k <= 5; ++k) edges.push_back(k * step);
-    rows.clear();
-    p = 0;
-    for (const std::string lab : {"LDSM_kb0", "SHVD_m400_kb0"}) {
-      if (main_.at(lab)->views().empty()) continue;
-      const View& v = main_.at(lab)->views().back();
-      const std::array<double, 3> c = mean_point(v);
-      const double oy = -12.0 * p++;
-      auto lf = [&](std::size_t i) { return st::bin_label(v.f[i] * 1e-3, edges, "|f|", "pN/um^2"); };
-      st::project(rows, lab + " front", v.X, v.normal, ex, ey, ez, c.data(), um, 0, oy, cap, lf);
-      st::project(rows, lab + " side", v.X, v.normal, my, ex, ez, c.data(), um, 11, oy, cap, lf);
-      st::project(rows, lab + " back", v.X, v.normal, mx, my, ez, c.data(), um, 22, oy, cap, lf);
-    }
-    T["fig7"] = picture("x_um", "z_um", std::move(rows));
-    // Fig. 8: H from the front for k_bend = 0, 0.1, 1.
-    const std::vector<double> H_edges = {-0.6, -0.45, -0.3, -0.15, 0.0, 0.15};
-    const std::vector<std::string> bending = {"SHVD_m400_kb0", "SHVD_m400_kb0.1", "SHVD_m400_kb1"};
-    rows.clear();
-    p = 0;
-    for (const std::string& lab : bending) {
-      if (main_.at(lab)->views().empty()) continue;
-      const View& v = main_.at(lab)->views().back();
-      const std::array<double, 3> c = mean_point(v);
-      st::project(rows, lab, v.X, v.normal, ex, ey, ez, c.data(), um, 11.0 * p++, 0, cap,
-                  [&](std::size_t i) { return st::bin_label(v.H[i] * um, H_edges, "H", "1/um"); });
-    }
-    T["fig8"] = picture("y_um", "z_um", std::move(rows));
-    // Fig. 9: cross-sections y = 0 at t = 0.005, 0.025, 0.05 s, one panel per k_bend (stacked).
-    rows.clear();
-    const double slab = 0.6 * std::sqrt(135.0 / double(n_)) * um;  // ~0.6 site spacings
-    p = 0;
-    for (const std::string& lab : bending) {
-      const Run& r = *main_.at(lab);
-      const double oy = -13.0 * p++;
-      wall_rows(rows, lab, r.model(), oy);
-      for (double t : {0.005, 0.025, 0.05})
-        if (const View* v = view_at(r, t)) {
-          const std::size_t n = v->X.size() / 3;
-          for (std::size_t i = 0; i < n; ++i)
-            if (std::abs(v->X[n + i]) < slab) rows.push_back({lab, time_label(t), v->X[i] / um, v->X[2 * n + i] / um + oy});
-        }
-    }
-    T["fig9"] = picture("x_um", "z_um", std::move(rows));
-  }
+  void figures(st::Json& T, bool full) const { capillary::figures(main_, n_, full, T); }
 
   st::Json series;
 
@@ -317,36 +203,6 @@ class CellRuns {
   std::map<std::string, Summary> summary_;
 };
 
-/// The values the checks read: ratios of the runs' measures (one-sided checks in the reference).
-void write_values(st::Json& V, const CellRuns& cells, int eta, double u_max_empty) {
-  auto ratio = [&cells](const std::string& a, const std::string& b, double Summary::*f) {
-    return number(cells.get(a, f) / cells.get(b, f));
-  };
-  auto excess = [&cells](const std::string& a, const std::string& b) {
-    return number(cells.get(a, &Summary::bumps) - cells.get(b, &Summary::bumps));
-  };
-  V["v_cell_um_s"] = number(cells.get("SHVD_m400_kb0.1", &Summary::v_cell) / um);
-  V["v_cell_over_u_max"] = number(cells.get("SHVD_m400_kb0.1", &Summary::v_cell) / um / u_max_empty);
-  V["front_H_std_ratio_kb0.1_over_kb0"] = ratio("SHVD_m400_kb0.1", "SHVD_m400_kb0", &Summary::std);
-  V["front_H_std_ratio_kb1_over_kb0.1"] = ratio("SHVD_m400_kb1", "SHVD_m400_kb0.1", &Summary::std);
-  V["front_H_cv_ratio_kb0.1_over_kb0"] = ratio("SHVD_m400_kb0.1", "SHVD_m400_kb0", &Summary::cv);
-  V["front_H_cv_ratio_kb1_over_kb0.1"] = ratio("SHVD_m400_kb1", "SHVD_m400_kb0.1", &Summary::cv);
-  V["bumps_m625_minus_m400"] = excess("SHVD_m625_kb0", "SHVD_m400_kb0");
-  V["nonaxisymmetric_rms_ratio_m625_over_m400"] = ratio("SHVD_m625_kb0", "SHVD_m400_kb0", &Summary::rms);
-  V["nonaxisymmetric_rms_ratio_LDSM_over_m400"] = ratio("LDSM_kb0", "SHVD_m400_kb0", &Summary::rms);
-  for (const std::string m : {"m900", "m1024"}) {  // Sec. 5.1.2: "even more bumps" above m = 625
-    const std::string lab = "SHVD_" + m + "_kb0_eta" + to_text(eta);
-    V["nonaxisymmetric_rms_ratio_" + m + "_over_m625"] = ratio(lab, "SHVD_m625_kb0", &Summary::rms);
-    V["bumps_" + m + "_minus_m625"] = excess(lab, "SHVD_m625_kb0");
-  }
-  const std::string md = "_kb0_MD4624_eta" + to_text(eta);
-  V["nonaxisymmetric_rms_ratio_m625_over_m400_MD4624"] = ratio("SHVD_m625" + md, "SHVD_m400" + md, &Summary::rms);
-  V["nonaxisymmetric_rms_ratio_LDSM_over_m400_MD4624"] = ratio("LDSM" + md, "SHVD_m400" + md, &Summary::rms);
-  V["bumps_m625_minus_m400_MD4624"] = excess("SHVD_m625" + md, "SHVD_m400" + md);
-  V["f_roughness_ratio_LDSM_over_m400"] = ratio("LDSM_kb0", "SHVD_m400_kb0", &Summary::roughness);
-  V["f_noise_ratio_LDSM_over_m400"] = ratio("LDSM_kb0", "SHVD_m400_kb0", &Summary::noise);
-  V["f_back_ratio_LDSM_over_m400"] = ratio("LDSM_kb0", "SHVD_m400_kb0", &Summary::back);
-}
 
 }  // namespace
 
@@ -393,7 +249,7 @@ int main(int argc, char** argv) {
     T["series"] = cells.series;
 
     // ---- 4. Values for the checks: ratios of the runs' measures ----------------------------------
-    write_values(V, cells, base.eta, u_max_empty);
+    write_values(V, cells.summaries(), base.eta, u_max_empty);
     V["wall_seconds"] = runner.elapsed();
 
     // ---- 5. Figures' rows (Figs. 6-9) and results -------------------------------------------------

@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "common/study.hpp"
+#include "setup.hpp"
 #include "common/tables.hpp"
 #include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
@@ -39,57 +40,9 @@ using namespace rbfib::mechanics;
 namespace st = rbfib::study;
 using st::Json;
 using st::row;
+using namespace rbfib::forces;
 
 namespace {
-
-struct Energy {
-  std::string name, tag;
-  EnergyDensity W;
-};
-
-/// The problem of Sec. 4.1 and what the experiments share: shapes, energies, evaluation sets
-/// ("MD", "MD_rbf_weights", "spiral" by n) and the SHVD interpolation sites by degree M. The MD
-/// sets stop at n = 4624 (N = 90, n = 8281, takes hours to generate).
-struct Setup {
-  explicit Setup(bool full)
-      : point_sets{{"MD", md_n}, {"MD_rbf_weights", md_n}, {"spiral", full ? spiral_n : md_n}},
-        nd_list(full ? std::vector<index_t>{100, 200, 400, 800, 1600} : std::vector<index_t>{100, 200, 400, 800}) {}
-  const std::vector<index_t> md_n = {529, 2025, 4624}, spiral_n = {529, 2025, 4624, 8281};
-  PerturbedEllipsoid ell = ellipsoid(1.1, 1 / std::sqrt(1.1), 1 / std::sqrt(1.1)), pert = paper_perturbed_ellipsoid();
-  std::vector<Energy> energies = {{"tension", "tension", EnergyDensity::surface_tension(1.0)},
-                                  {"neo-Hookean", "neo_hookean", EnergyDensity::neo_hookean_paper(1.0, 1.0)}};
-  std::vector<std::pair<std::string, std::vector<index_t>>> point_sets;
-  std::vector<index_t> nd_list;
-  std::vector<int> M_list = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14};  // m = 4 .. 225
-  index_t n_shvd = 4624;  ///< the MD set on which SHVD and RBF are evaluated
-  int repeats = 11;
-  std::map<std::pair<std::string, index_t>, EvaluationSet> sets;
-  std::map<int, SphereSites> md;
-  std::vector<Jet> Z;  ///< unit-sphere jets at the SHVD/RBF evaluation sites
-  const EvaluationSet& eval() const { return sets.at({"MD", n_shvd}); }
-};
-
-void describe(const Setup& S, Json& P) {
-  P["ellipsoid_a"] = 1.1;
-  P["ellipsoid_b_c"] = 1 / std::sqrt(1.1);
-  P["perturbed_a_b_c_B"] = "0.1, 0.2, 0.2, 0.25";
-  P["perturbed_Vf"] = S.pert.Vf;
-  P["sigma_K_A_Gs"] = "1 (dimensionless, as the paper)";
-  P["reference"] = "unit sphere";
-  P["evaluation_sites"] =
-      "MD: maximal-determinant-like (reference/point_sets), n = 529, 2025, 4624; "
-      "spiral: Bauer spiral (diss. eq. 5.1), n = 529, 2025, 4624 (, 8281 full)";
-  P["evaluation_weights"] = "MD: eq. (45) (square system, nonnegative); spiral: eq. (2.22) with phi = r^3";
-  P["interpolation_sites"] = "(M+1)^2 sites maximizing |det Y| (gradient ascent from the Bauer spiral)";
-  P["shvd_rbf_evaluation"] = "MD, n = " + to_text(S.n_shvd);
-  P["rbf_basis"] = "PHS r^7 + real harmonics of degree <= 5";
-  P["timing_repeats"] = S.repeats;
-}
-
-/// The exact force F^_E = F_E dA0 (eqs. 35, 52) of the map s at the sites of e.
-std::vector<double> exact_forces(const PerturbedEllipsoid& s, const EvaluationSet& e, const EnergyDensity& W) {
-  return forces_from_density(elastic_force_density("exact", s.jets(e.sites), unit_sphere_jets(e.sites), W), e.w);
-}
 
 /// SHVD or RBF forces from data sites X_data through ops at the evaluation sites: the median time
 /// of the repeats, and the error against the exact forces Fe.
@@ -102,44 +55,6 @@ std::pair<double, MaxNormError> reconstructed_forces(const Setup& S, const std::
     F = forces_from_density(elastic_force_density(cell, jets_from_operators(ops, X_data), S.Z, W), e.w);
   });
   return {secs, max_norm_error(F, Fe)};
-}
-
-/// One evaluation set: "MD" (stored sites, eq. 45 weights), "MD_rbf_weights" (the same sites with
-/// the weights of eq. 2.22, phi = r^3) or "spiral" (Bauer spiral, eq. 2.22 weights).
-EvaluationSet make_set(const st::Options& opt, const Setup& S, const std::string& points, index_t n) {
-  if (points == "spiral") return make_evaluation_set(n);
-  const int N = int(std::lround(std::sqrt(double(n)))) - 1;
-  if (points == "MD")
-    return make_md_evaluation_set(st::source_path(opt, "reference/point_sets/max_determinant_N" + to_text(N) + ".txt"),
-                                  N);
-  EvaluationSet e = S.sets.at({"MD", n});
-  const RbfWeights q = rbf_sphere_weights(e.sites, 3);
-  e.family = points;
-  e.w = q.w;
-  e.rcond = q.rcond;
-  return e;
-}
-
-/// The evaluation sets, their weight ranges and the force integral (quadrature error) of each.
-Json evaluation_sets(const st::Options& opt, Setup& S) {
-  Json t = st::table({"points", "n", "sqrt_n", "min_weight_n_over_4pi", "max_weight_n_over_4pi", "eq45_residual",
-                      "rbf_rcond", "force_integral_ellipsoid", "force_integral_perturbed", "seconds"});
-  for (const auto& [points, ns] : S.point_sets)
-    for (index_t n : ns) {
-      EvaluationSet e;
-      const double secs = st::median_seconds(1, [&] { e = make_set(opt, S, points, n); });
-      double qi[2] = {0, 0};
-      for (int k = 0; k < 2; ++k)
-        for (const Energy& en : S.energies)
-          qi[k] = std::max(qi[k], net_force_inf(exact_forces(k ? S.pert : S.ell, e, en.W)));
-      const double scale = double(n) / (4 * pi), wmin = *std::min_element(e.w.begin(), e.w.end()) * scale,
-                   wmax = *std::max_element(e.w.begin(), e.w.end()) * scale;
-      t["rows"].push(row({points, double(n), std::sqrt(double(n)), wmin, wmax, st::number(e.eq45_residual),
-                          points == "MD" ? Json() : Json(e.rcond), qi[0], qi[1], secs}));
-      st::log(opt, points + " n = " + to_text(n) + ": force integral " + to_text(qi[0]) + " / " + to_text(qi[1]));
-      S.sets.emplace(std::make_pair(points, n), std::move(e));
-    }
-  return t;
 }
 
 /// Figs. 2-3: LDSM against n on every evaluation set, SHVD against m on the MD set n = 4624.

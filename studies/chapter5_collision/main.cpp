@@ -20,6 +20,7 @@
 // Run:   build/studies/study_chapter5_collision --scale quick --out runs/chapter5_collision/quick
 //        build/studies/study_chapter5_collision --scale full --sitting 3600 --out runs/chapter5_collision/full
 #include "common/study.hpp"
+#include "measures.hpp"
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/cells/measure.hpp"
 #include "rbfib/cells/reference_geometry.hpp"
@@ -38,14 +39,11 @@ using namespace rbfib;
 namespace st = rbfib::study;
 using st::Json;
 using st::row;
+using namespace rbfib::collision;
 
 namespace {
 
-const double kBox = 16 * units::um;             // the box, periodic in x and z
 const double kFict = 0.1 / (1e-3 * units::cm);  // dyn/cm^2: 0.1 dyn/cm over the code's 10 um (header)
-const Vec3 kLine = {1 / std::sqrt(2.0), 0, 1 / std::sqrt(2.0)};   // d = (e1 + e3)/sqrt 2
-const Vec3 kView = {1 / std::sqrt(2.0), 0, -1 / std::sqrt(2.0)};  // the normal of the plane x = z
-const surface::PeriodicBox kPeriodic{{kBox, kBox, kBox}, {true, false, true}};
 const cells::ReferenceShape kCell = cells::evans_fung_red_cell(3.91 * units::um);  // R0 of Sec. 2.2
 const double A0 = cells::evans_fung_area(3.91 * units::um);                       // its area (cm^2)
 
@@ -54,13 +52,6 @@ std::string fmt(double v, const char* f = "%.4g") {
   std::snprintf(b, sizeof b, f, v);
   return b;
 }
-
-using Pose = AxisAngle;  // a cell's rotation as the scene takes it
-struct Orientation {
-  std::string id, what;
-  std::array<Pose, 2> pose;
-  double t_figure_ms;  // the time of the seed's right-hand panel
-};
 
 std::vector<Orientation> orientations() {
   const Pose along_d{{0, 1, 0}, pi / 4};  // e3 -> d
@@ -71,15 +62,6 @@ std::vector<Orientation> orientations() {
           {"e-f", "edge facing a concavity", {along_d, along_y}, 1.5},
           {"g-h", "edges facing, one turned by pi/2 about e1 + e3", {along_y, turned}, 1.1}};
 }
-
-struct Setup {
-  std::string label;    // names its runs (<label>_<orientation>) and their directory
-  double h, dt, t_end;  // cm, s, s (dt: the fixed step, or with the ladder its lowest rung)
-  double mu;            // P
-  int n_data, n_sample;
-  int measure_every, checkpoint_every;  // steps (checkpoints: 0 = none, a run that is not resumable)
-  int ladder = 0;  // > 0: the seed's adaptive step, dt = 2^k dt for k = 0..ladder by eq. 5.4
-};
 
 /// The run's scene (docs/scenes.md). Centres on the line x = z, y = 8 um with the planes supporting
 /// the two hulls normal to d 4h apart, the gap centred on the box centre (for these orientations,
@@ -107,87 +89,6 @@ scene::Scene collision_scene(const Orientation& o, const Setup& s, double force)
   }
   return sc;
 }
-
-// ---- Measurements: the run's series, kept in its checkpoint --------------------------------------
-// "samples" [step, t, min_gap, separation, volume 1, volume 2, max |u|, eq54_ratio] (CGS), "outlines"
-// [t, kind, cell, s, y] (um), "shapes" [t, moment, cell, depth, width_y, width_across] (cm),
-// "reference" [V0, A0 of the quadrature].
-enum Column { kStep, kT, kGap, kSeparation, kVolume, kMaxVelocity = 6, kEq54 };
-constexpr int kStart = 0, kMid = 1, kFigure = 2, kEnd = 3;  // moments
-const char* kKinds[2] = {"section", "silhouette"};
-const char* kMoments[4] = {"start", "mid", "figure", "end"};
-
-struct Sites {  // the two cells' sample sites (n x 3 each), volumes and volume centroids
-  std::array<std::vector<double>, 2> X;
-  index_t n = 0;
-  cells::CellDiagnostics diag;
-};
-
-Sites sites(const sim::ImmersedBoundary& ib) {
-  cells::CellGeometry g;
-  cells::measure(ib.batch(0), g);
-  const std::vector<double> P = g.positions.to_host();
-  const index_t n = ib.batch(0).type().n_sample();
-  return {{cells::cell_points(P, n, 2, 0), cells::cell_points(P, n, 2, 1)}, n, g.cells};
-}
-
-/// The minimum distance between the cells' sample sites (cell 2 at the periodic image nearest cell 1
-/// by their centroids), the centroids' distance along d, the volumes, and the last step's max |u|
-/// and dt over eq. 5.4's bound (1 stops the run).
-std::vector<double> sample(const sim::ImmersedBoundary& ib, const Sites& at, const sim::IbStepReport& last) {
-  const auto& c = at.diag.centroid;
-  auto wrap = [](double d) { return d - kBox * std::round(d / kBox); };
-  return {double(ib.step_count()), ib.time(),
-          surface::closest_points(at.X[0], at.n, at.X[1], at.n, surface::nearest_image_shift(c[0], c[1], kPeriodic)).distance,
-          wrap(c[1][0] - c[0][0]) * kLine[0] + wrap(c[1][2] - c[0][2]) * kLine[2], at.diag.volume[0], at.diag.volume[1],
-          last.max_velocity, last.dt_bound > 0 && std::isfinite(last.dt_bound) ? last.dt / last.dt_bound : 0};
-}
-
-/// The outlines seen from above the plane x = z in s = X.d - 8 sqrt 2 um and y (the sites within
-/// h/2 of the plane, and the silhouette in 72 angular bins), and each cell's extents along d, e2
-/// and the line of sight (e1 - e3)/sqrt 2 about its centroid.
-void record_state(run::SeriesSet& series, double t, const Sites& at, int moment, double h) {
-  for (int c = 0; c < 2; ++c) {
-    const cells::Outline o = cells::outline(at.X[c], at.n, kLine, {0, 1, 0}, kView, {kBox / 2 * std::sqrt(2.0), 0}, 0, h / 2);
-    for (int kind = 0; kind < 2; ++kind)
-      for (const auto& q : kind == 0 ? o.section : o.silhouette)
-        series["outlines"].rows.push_back({t, double(kind), c + 1.0, q[0] / units::um, q[1] / units::um});
-  }
-  for (int c = 0; c < 2; ++c) {
-    const std::vector<double> e = cells::extents(at.X[c], at.n, at.diag.centroid[c], {kLine, {0, 1, 0}, kView}, kPeriodic);
-    series["shapes"].rows.push_back({t, double(moment), c + 1.0, e[0], e[1], e[2]});
-  }
-}
-
-/// The series as CSV beside the run (a view: the checkpoint holds them).
-void write_csv(const std::string& dir, const run::SeriesSet& series) {
-  auto write = [&](const char* file, const char* name, const char* header, int precision, const char* const* names) {
-    std::ofstream f(dir + "/" + file);
-    f.precision(precision);
-    f << header << "\n";
-    if (series.count(name))
-      for (const std::vector<double>& r : series.at(name).rows)
-        for (std::size_t k = 0; k < r.size(); ++k) {
-          if (k == 1 && names) f << names[int(r[k])];
-          else f << r[k];
-          f << (k + 1 < r.size() ? "," : "\n");
-        }
-  };
-  write("series.csv", "samples", "step,t_s,min_gap_cm,separation_cm,volume0_cm3,volume1_cm3,max_velocity_cm_s,eq54_ratio", 17, nullptr);
-  write("outlines.csv", "outlines", "t_s,kind,cell,s_um,y_um", 10, kKinds);
-  write("shapes.csv", "shapes", "t_s,moment,cell,depth_cm,width_y_cm,width_across_cm", 17, kMoments);
-}
-
-std::string status(const run::Progress& p) {
-  if (p.status == run::RunStatus::finished) return "done";
-  if (p.status == run::RunStatus::stopped) return *p.stop_cause == Cause::stopping_condition ? "eq. 5.4" : "stopped";
-  return "running";
-}
-
-struct Outcome {
-  run::Progress progress;
-  run::SeriesSet series;  // empty: not begun (no sitting has reached it)
-};
 
 /// One orientation's run at one setup through the run loop, in DIR/<setup>/<orientation>/; a
 /// resumable run keeps its checkpoint and steps while the sitting has time.
@@ -250,96 +151,6 @@ Outcome run_orientation(const Orientation& o, const Setup& s, double figure_time
   write_csv(dir, runner.series());
   st::log(opt, who + ": " + status(q) + " at step " + to_text(q.clock.step) + ", t = " + fmt(q.clock.t / units::us) + " us");
   return {q, runner.series()};
-}
-
-// ---- Results tables -----------------------------------------------------------------------------
-struct Tables {
-  Json runs = st::table({"run", "setup", "orientation", "h_um", "mu_cP", "n_sample", "dt_ns", "dt_top_ns", "dt_mean_ns", "status", "steps", "t_us", "t_stop_us", "t_figure_us",
-                         "t_stop_over_t_figure", "stopped_by_eq54", "initial_gap_over_h", "min_gap_um", "min_gap_over_h", "t_min_gap_us",
-                         "approach_um", "approach_over_h", "max_volume_change_rel", "seconds", "seconds_per_step", "steps_to_go", "hours_to_go"},
-                        {"", "", "", "um", "cP", "", "ns", "ns", "ns", "", "", "us", "us", "us", "", "", "", "um", "", "us", "um", "", "", "s", "s", "", "h"});
-  Json gap_series = st::table({"setup", "orientation", "h_um", "t_us", "min_gap_um", "gap_over_h", "separation_um", "volume_change_1",
-                               "volume_change_2", "max_velocity_mm_s", "eq54_ratio"},
-                              {"", "", "um", "us", "um", "", "um", "", "", "mm/s", ""});
-  Json outlines = st::table({"setup", "orientation", "h_um", "kind", "t_us", "cell", "s_um", "y_um"}, {"", "", "um", "", "us", "", "um", "um"});
-  Json shapes = st::table({"run", "setup", "orientation", "moment", "t_us", "cell", "depth_um", "width_y_um", "width_across_um",
-                           "depth_over_width", "depth_over_width_across"},
-                          {"", "", "", "", "us", "", "um", "um", "um", "", ""});
-  std::vector<Json::Array> fig_rows;  // Fig. 5.3, per orientation; each setup appends its columns
-  double ended = 0, peak54 = 0, hours_to_go = 0;
-  std::vector<double> per_step;  // s per step at the scale's own resolution
-  Json fig53(const std::vector<Setup>& setups) const {
-    std::vector<std::string> columns = {"orientation", "panels", "t_figure_ms"}, units = {"", "", "ms"};
-    for (const Setup& s : setups) {
-      for (const char* c : {"status_", "t_reached_ms_", "t_stop_ms_", "t_stop_over_t_figure_", "depth_over_width_"}) columns.push_back(c + s.label);
-      units.insert(units.end(), {"", "ms", "ms", "", ""});
-    }
-    Json fig = st::table(columns, units);
-    for (const Json::Array& r : fig_rows) fig["rows"].push(Json(r));
-    return fig;
-  }
-};
-
-/// One run's rows: its gap series, outlines and shapes, its row of runs and its columns of Fig. 5.3.
-void tabulate(Tables& T, Json& results, const Setup& s, const Orientation& o, std::size_t k, const Outcome& r, bool full, bool own) {
-  const std::string id = s.label + "_" + o.id;
-  const double h_um = s.h / units::um, t_figure = o.t_figure_ms * units::ms;
-  if (r.series.empty()) {  // not begun: nothing measured
-    Json::Array cols{Json(id), Json(s.label), Json(o.id), Json(h_um), Json(s.mu / units::cP), Json(s.n_sample), Json(s.dt / units::ns),
-                     Json(s.dt * double(1 << s.ladder) / units::ns), Json(), Json("not begun")};
-    cols.resize(27);
-    T.runs["rows"].push(Json(cols));
-    T.fig_rows[k].insert(T.fig_rows[k].end(), {Json("not begun"), Json(), Json(), Json(), Json()});
-    st::record_run(results, id, st::RunProgress{false, 0, s.t_end, 0, NAN, ""});
-    return;
-  }
-  const std::vector<std::vector<double>>& samples = r.series.at("samples").rows;
-  const double v0 = r.series.at("reference").rows.back().at(0);
-  double gmin = 1e300, tmin = 0, vmax = 0, closest = samples.front()[kSeparation];
-  for (const std::vector<double>& m : samples) {
-    if (m[kGap] < gmin) gmin = m[kGap], tmin = m[kT];
-    T.peak54 = std::max(T.peak54, m[kEq54]);
-    for (int c = 0; c < 2; ++c) vmax = std::max(vmax, std::abs(m[kVolume + c] - v0) / v0);
-    closest = std::min(closest, std::abs(m[kSeparation]));  // before any sliding past
-    T.gap_series["rows"].push(row({s.label, o.id, h_um, m[kT] / units::us, m[kGap] / units::um, m[kGap] / s.h, m[kSeparation] / units::um,
-                                   (m[kVolume] - v0) / v0, (m[kVolume + 1] - v0) / v0, m[kMaxVelocity] / units::mm,
-                                   m[kStep] > 0 ? Json(m[kEq54]) : Json()}));
-  }
-  for (const std::vector<double>& q : r.series.at("outlines").rows)
-    T.outlines["rows"].push(row({s.label, o.id, h_um, kKinds[int(q[1])], std::round(q[0] / units::ns) / 1e3, q[2], q[3], q[4]}));
-  bool at_figure = false;  // full scale: a run that ended before the figure's time has no shapes there
-  double figure_ratio = 0;
-  for (const std::vector<double>& c : r.series.at("shapes").rows) {
-    at_figure = at_figure || c[1] == kFigure;
-    if (c[1] == kFigure) figure_ratio += c[3] / c[4] / 2;
-    T.shapes["rows"].push(row({id, s.label, o.id, kMoments[int(c[1])], c[0] / units::us, c[2], c[3] / units::um, c[4] / units::um,
-                               c[5] / units::um, c[3] / c[4], c[3] / c[5]}));
-  }
-  const run::Progress& q = r.progress;
-  if (full && q.ended() && !at_figure)
-    for (int c = 1; c <= 2; ++c) T.shapes["rows"].push(row({id, s.label, o.id, "figure", t_figure / units::us, c, Json(), Json(), Json(), Json(), Json()}));
-  const std::string how = status(q);
-  const bool stopped = q.status == run::RunStatus::stopped;
-  const long steps = q.clock.step;
-  const double t = q.clock.t, approach = samples.front()[kSeparation] - closest;
-  // The time per step: this sitting's if it stepped, else every sitting's.
-  const double sps = q.sitting_steps > 0 ? q.sitting_seconds / q.sitting_steps : (steps > 0 ? q.wall_seconds / steps : NAN);
-  const double mean_dt = steps > 0 ? t / double(steps) : s.dt;  // the ladder's mean step so far
-  const long to_go = q.ended() ? 0 : std::lround((s.t_end - t) / mean_dt);
-  const double hours = to_go * sps / 3600;
-  T.hours_to_go += std::isfinite(hours) ? hours : 0;
-  if (std::isfinite(sps) && own) T.per_step.push_back(sps);
-  const Json ratio = stopped ? Json(t / t_figure) : Json();
-  T.runs["rows"].push(row({id, s.label, o.id, h_um, s.mu / units::cP, s.n_sample, s.dt / units::ns, s.dt * double(1 << s.ladder) / units::ns,
-                           steps > 0 ? Json(mean_dt / units::ns) : Json(), how, double(steps), t / units::us,
-                           stopped ? Json(t / units::us) : Json(), t_figure / units::us, ratio, q.ended() ? Json(how == "eq. 5.4" ? 1.0 : 0.0) : Json(),
-                           samples.front()[kGap] / s.h, gmin / units::um, gmin / s.h, tmin / units::us, approach / units::um, approach / s.h, vmax,
-                           q.wall_seconds, sps, double(to_go), hours}));
-  T.fig_rows[k].insert(T.fig_rows[k].end(), {Json(how), Json(t / units::ms), stopped ? Json(t / units::ms) : Json(), ratio,
-                                             at_figure ? Json(figure_ratio) : Json()});
-  T.ended += q.ended();
-  if (!q.stop_message.empty()) results["parameters"]["stop_" + id] = q.stop_message;
-  st::record_run(results, id, st::RunProgress{q.ended(), t, s.t_end, steps, sps, q.stop_message});
 }
 
 /// The parameters, echoed in the results.

@@ -22,15 +22,15 @@
 // holds no wobble, fewer than two flips, or no complete edge-on interval).
 //
 // Run:   build/studies/study_chapter5_platelets --scale quick --out runs/chapter5_platelets
-#include "common/cell_shape.hpp"
-#include "rbfib/core/constants.hpp"
 #include "common/scene_run.hpp"
 #include "common/study.hpp"
+#include "measures.hpp"
+#include "rbfib/cells/measure.hpp"
+#include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
-#include "rbfib/core/series.hpp"
 #include "rbfib/core/units.hpp"
-#include "rbfib/sim/tether_motion.hpp"
 #include "rbfib/scene/scene.hpp"
+#include "rbfib/sim/tether_motion.hpp"
 
 #include <cmath>
 
@@ -38,10 +38,9 @@ using namespace rbfib;
 namespace st = rbfib::study;
 using st::Json;
 using st::row;
-using st::Vec3;
+using namespace rbfib::platelets;
 
 namespace {
-const double gaps_um[2] = {0.3, 0.5};  // the seed's two platelets
 
 /// The wall under the platelets: the seed's endothelium of tethered points on the plane y = 1 um
 /// (eq. 2.10 with the seed's k and eta), or the grid's own no-slip wall (the seed: "for modeling a
@@ -95,7 +94,7 @@ std::vector<double> sample(const sim::ImmersedBoundary& ib, double wall_y) {
   const long n = b.type().n_data();
   std::vector<double> row{ib.time()};
   for (long c = 0; c < 2; ++c) {
-    const st::CellShape s = st::cell_shape(X, n, 2, c);
+    const cells::CellShape s = cells::cell_shape(X, n, 2, c);
     double lowest = INFINITY;
     for (long i = 0; i < n; ++i) lowest = std::min(lowest, X[std::size_t((2 + c) * n + i)]);  // y of cell c: column d N + c = 2 + c
     row.insert(row.end(), s.center.begin(), s.center.end());
@@ -109,93 +108,54 @@ std::vector<double> sample(const sim::ImmersedBoundary& ib, double wall_y) {
   return row;
 }
 
-struct Platelet {
-  std::vector<double> tilt, gap, height;  // rad (unwrapped), cm, cm
-  double volume_change = NAN;              // NaN until two samples have measured the volume
-  double tilt_rate = 0, jeffery_rate = 0;  // over the second half, / gdot
-  double edge_on_seconds = 0;              // time with the short axis within 45 deg of the flow
-  int flips = 0;                           // passes of the tilt through 90 deg + k 180 deg
-  double min_gap = INFINITY;
-  // The seed's three numbers (Sec. 5.2); NaN when the window holds no such event.
-  double tumble_frequency = NAN;    // full orbits (2 pi) per s: 1 / (2 x the mean interval between flips)
-  double edge_on_per_tumble = NAN;  // s, the mean contiguous edge-on interval (begun and ended in the window)
-  double wobble_frequency = NAN;    // 1/s: 1 / (2 x the mean interval between crossings of the tilt's mean)
+/// One wall's run and its tables (the seed's tethers: the checks' run, whose values carry no suffix).
+struct WallRun {
+  Wall wall;
+  std::string suffix, label;  // of its run's id, tables and values; its row of wall_treatments
+  double share;               // its part of what is left of the sitting: 1 / share
+  Json series, summary;
 };
 
-/// Platelet c's motion from the samples at times t, beside Jeffery's rigid spheroid from the same
-/// axis (flow z, gradient y, shear gdot); its time series (every 200th of the run) into `series`.
-Platelet analyse(const std::vector<std::vector<double>>& samples, const std::vector<double>& t, int c, double gdot, Json& series) {
-  const std::size_t o = 1 + 8 * std::size_t(c), ns = t.size(), half = ns / 2;
-  Platelet p;
-  std::vector<double> angle;
-  double v0 = NAN;
-  for (const auto& r : samples) {
-    angle.push_back(std::atan(r[o + 5] / r[o + 4]));  // tilt of the short axis from the wall normal (y) toward the flow (z)
-    p.gap.push_back(r[o + 6]), p.height.push_back(r[o + 1]), p.min_gap = std::min(p.min_gap, r[o + 6]);
-    if (!std::isfinite(r[o + 7])) continue;  // not measured in this sample
-    if (!std::isfinite(v0)) {
-      v0 = r[o + 7];
-    } else {
-      const double change = std::abs(r[o + 7] - v0) / v0;
-      p.volume_change = std::isfinite(p.volume_change) ? std::max(p.volume_change, change) : change;
+/// Runs (or continues) one wall's scene; adds its rows to the tables and its values.
+void run_wall(WallRun& w, const Setup& s, const st::Sitting& sitting, const st::Options& opt, Json& results, Json& walls, Json& cost) {
+  const double us = units::us, ms = units::ms, gdot = 1000;
+  const bool seed = w.wall == Wall::tethers;
+  const std::string id = "platelets" + w.suffix;
+  st::SceneRunHooks hooks;
+  hooks.sample = [&w](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib, wall_plane(w.wall)); };
+  const std::string text = scene::to_yaml(platelets_scene(s, w.wall), w.wall == Wall::grid ? "chapter5_platelets: two platelets over the grid's flat wall (Sec. 5.2)"
+                                                                                            : "chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)");
+  const run::Cadence every = seed ? run::Cadence{std::max(1L, std::lround(s.t_end / s.dt) / 400)} : run::Cadence{0, s.t_end / 400};
+  const st::SceneRun run = st::run_scene(text, id, every, opt.keeps_runs(), opt, hooks, sitting.remaining() / w.share);
+  std::vector<double> t;
+  double displacement = 0;  // the largest over the run; the slip at its end (at t = 0 it is the initial shear's, gdot x 1 um)
+  for (const auto& r : run.samples) t.push_back(r[0]), displacement = std::max(displacement, r[r.size() - 2]);
+  const double slip = run.samples.back().back();
+  Json& V = results["values"];
+  Json ignored;
+  Platelet p[2];
+  for (int c = 0; c < 2; ++c) {
+    p[c] = analyse(run.samples, t, c, gdot, w.series);
+    report(p[c], c, t.back() - t.front(), w.summary, seed ? V : ignored, opt);
+  }
+  V["endothelium_displacement_um" + w.suffix] = displacement / units::um;
+  V["completed" + w.suffix] = run.stopped.empty() ? 1.0 : 0.0;
+  st::record_run(results, id, run.progress(s.t_end));
+  // The cost: time per step and the time to the seed's 100 ms at the mean step so far.
+  const double t_now = t.back(), mean_dt = run.steps > 0 ? t_now / double(run.steps) : s.dt, sps = run.seconds_per_step();
+  const double steps_100 = std::round(100 * ms / mean_dt);
+  cost["rows"].push(row({id, 16.0 / s.cells_x, mean_dt / us, double(run.steps), run.seconds, sps, steps_100, steps_100 * sps / 3600,
+                         (s.t_end - t_now) / mean_dt * sps / 3600}));
+  walls["rows"].push(row({w.label, t_now / ms, mean_dt / us, s.dt * (seed ? 1 : 16) / us, double(run.steps), sps, steps_100 * sps / 3600,
+                          displacement / units::um, slip / units::um, p[0].min_gap / units::um, p[1].min_gap / units::um, p[0].tilt.back() * 180 / pi,
+                          p[1].tilt.back() * 180 / pi, p[0].tilt_rate / p[0].jeffery_rate, p[1].tilt_rate / p[1].jeffery_rate}));
+  if (!seed)
+    for (int c = 0; c < 2; ++c) {
+      const std::string k = (c == 0 ? "_near" : "_far") + w.suffix;
+      V["min_gap_um" + k] = p[c].min_gap / units::um;
+      V["rate_over_jeffery" + k] = p[c].tilt_rate / p[c].jeffery_rate;
+      V["volume_change" + k] = p[c].volume_change;
     }
-  }
-  p.tilt = st::unwrap(angle, pi);
-  const std::vector<double>& r0 = samples.front();
-  std::vector<double> jangle;
-  for (const Vec3& a : st::jeffery_axis(Vec3{r0[o + 3], r0[o + 4], r0[o + 5]}, 0.5 / 1.55, gdot, 2, 1, t)) jangle.push_back(std::atan(a[2] / a[1]));
-  const std::vector<double> jt = st::unwrap(jangle, pi), th(t.begin() + long(half), t.end());
-  // The tilt grows in the sense of the shear: u = gdot y e_z turns the axis from y toward z.
-  p.tilt_rate = st::slope(th, std::vector<double>(p.tilt.begin() + long(half), p.tilt.end())) / gdot;
-  p.jeffery_rate = st::slope(th, std::vector<double>(jt.begin() + long(half), jt.end())) / gdot;
-  // Edge-on: e = |tilt - the nearest k pi| - pi/4 > 0 (the short axis within 45 deg of the flow, the
-  // edge pointing at the wall). A flip: the tilt passes 90 deg + k 180 deg, the middle of an edge-on interval.
-  std::vector<double> e(ns), flip_times, edge_on;
-  for (std::size_t i = 0; i < ns; ++i) e[i] = std::abs(std::remainder(p.tilt[i], pi)) - pi / 4;
-  double entered = NAN;
-  for (std::size_t i = 1; i < ns; ++i) {
-    if (e[i] > 0) p.edge_on_seconds += t[i] - t[i - 1];
-    const double k0 = std::floor(p.tilt[i - 1] / pi - 0.5), k1 = std::floor(p.tilt[i] / pi - 0.5);
-    if (k0 != k1) {
-      ++p.flips;
-      const double at = (std::max(k0, k1) + 0.5) * pi;  // the 90 deg + k 180 deg passed
-      flip_times.push_back(t[i - 1] + (t[i] - t[i - 1]) * (at - p.tilt[i - 1]) / (p.tilt[i] - p.tilt[i - 1]));
-    }
-    if (e[i - 1] <= 0 && e[i] > 0) entered = zero_crossing(t, e, i);
-    if (e[i - 1] > 0 && e[i] <= 0 && std::isfinite(entered)) edge_on.push_back(zero_crossing(t, e, i) - entered), entered = NAN;
-  }
-  // One tumble end over end is a flip (pi); the seed's 30/s counts full orbits (2 pi): conventions.
-  p.tumble_frequency = 1 / (2 * mean_interval(flip_times));
-  if (!edge_on.empty()) {
-    p.edge_on_per_tumble = 0;
-    for (double d : edge_on) p.edge_on_per_tumble += d / double(edge_on.size());
-  }
-  p.wobble_frequency = oscillation_frequency(t, p.tilt, t.front() + 5 * units::ms);  // after the start-up response (a strain of 5)
-  for (std::size_t i = 0; i < ns; i += std::max<std::size_t>(1, ns / 200))
-    series["rows"].push(row({gaps_um[c], t[i] / units::ms, gdot * t[i], p.tilt[i] * 180 / pi, jt[i] * 180 / pi, p.gap[i] / units::um, p.height[i] / units::um}));
-  return p;
-}
-
-/// Platelet c's row of the summary and its values ("near" the wall, or "far").
-void report(const Platelet& p, int c, double span, Json& summary, Json& values, const st::Options& opt) {
-  const double ms = units::ms;
-  summary["rows"].push(row({gaps_um[c], p.min_gap / units::um, p.tilt.back() * 180 / pi, p.tilt_rate, p.jeffery_rate, p.tilt_rate / p.jeffery_rate,
-                            double(p.flips), span > 0 ? p.flips / span : NAN, p.edge_on_seconds / ms, p.tumble_frequency, p.edge_on_per_tumble / ms,
-                            p.wobble_frequency, p.volume_change}));
-  const std::string k = c == 0 ? "near" : "far";
-  values["min_gap_um_" + k] = p.min_gap / units::um;
-  values["rate_over_jeffery_" + k] = p.tilt_rate / p.jeffery_rate;
-  values["volume_change_" + k] = p.volume_change;
-  values["flips_" + k] = double(p.flips);
-  values["edge_on_ms_" + k] = p.edge_on_seconds / ms;
-  values["tumble_frequency_1_s_" + k] = p.tumble_frequency;
-  values["edge_on_ms_per_tumble_" + k] = p.edge_on_per_tumble / ms;
-  values["wobble_frequency_1_s_" + k] = p.wobble_frequency;
-  st::log(opt, "platelet " + to_text(gaps_um[c]) + " um above the wall: min gap " + to_text(p.min_gap / units::um) + " um, tilt " +
-                   to_text(p.tilt.back() * 180 / pi) + " deg, rate " + to_text(p.tilt_rate) + " gdot (Jeffery " + to_text(p.jeffery_rate) +
-                   "), flips " + to_text(p.flips) + ", edge-on " + to_text(p.edge_on_seconds / ms) + " ms (" + to_text(p.edge_on_per_tumble / ms) +
-                   " ms per tumble), tumbles " + to_text(p.tumble_frequency) + " /s, wobble " + to_text(p.wobble_frequency) + " /s, volume change " +
-                   to_text(p.volume_change));
 }
 
 }  // namespace
@@ -205,9 +165,8 @@ int main(int argc, char** argv) {
     const st::Options opt = st::parse_command_line(argc, argv, "chapter5_platelets",
                                                    "Sec. 5.2: two platelets over a flat endothelium in shear 1000/s, wobbling and tumbling");
     const bool full = opt.scale == st::Scale::full;
-    const double us = units::us, ms = units::ms, gdot = 1000;
+    const double us = units::us, ms = units::ms;
     const Setup s = full ? Setup{80, 60, 900, 128, 50 * units::ns, 100 * ms} : Setup{40, 30, 400, 64, 100 * units::ns, 0.3 * ms};
-    const long total = std::lround(s.t_end / s.dt);
     Json results = st::make_results(opt);
     Json& P = results["parameters"];
     P["box_um"] = "16 x 12 x 16, periodic x and z, walls in y, the top one at 12 mm/s along z (shear 1000/s)";
@@ -224,68 +183,27 @@ int main(int argc, char** argv) {
     P["t_end_ms"] = s.t_end / ms;
     P["kernel_integrator_coupling"] = "B3 kernel, backward-forward Euler, the seed's coupling (a)-(g)";
 
-    // The seed's endothelium (run "platelets", the checks' run) and the grid's wall on the ladder
-    // (run "platelets_grid_wall"), side by side in the table wall_treatments.
-    Json ts = st::table({"gap_um", "t_ms", "strain", "tilt_deg", "jeffery_tilt_deg", "gap_now_um", "height_um"}, {"um", "ms", "", "deg", "deg", "um", "um"});
-    Json ts_grid = ts;
-    Json sum = st::table({"gap_um", "min_gap_um", "tilt_end_deg", "tilt_rate_over_gdot", "jeffery_rate_over_gdot", "rate_over_jeffery", "flips",
-                          "flip_frequency_1_s", "edge_on_ms", "tumble_frequency_1_s", "edge_on_ms_per_tumble", "wobble_frequency_1_s", "volume_change_rel"},
-                         {"um", "um", "deg", "", "", "", "", "1/s", "ms", "1/s", "ms", "1/s", ""});
-    Json sum_grid = sum, ignored;
+    // The seed's endothelium (the checks' run), the grid's wall and the tethers following the step
+    // (both on the ladder), side by side in the table wall_treatments.
+    const Json series = st::table({"gap_um", "t_ms", "strain", "tilt_deg", "jeffery_tilt_deg", "gap_now_um", "height_um"}, {"um", "ms", "", "deg", "deg", "um", "um"});
+    const Json summary = st::table({"gap_um", "min_gap_um", "tilt_end_deg", "tilt_rate_over_gdot", "jeffery_rate_over_gdot", "rate_over_jeffery", "flips",
+                                    "flip_frequency_1_s", "edge_on_ms", "tumble_frequency_1_s", "edge_on_ms_per_tumble", "wobble_frequency_1_s", "volume_change_rel"},
+                                   {"um", "um", "deg", "", "", "", "", "1/s", "ms", "1/s", "ms", "1/s", ""});
     Json walls = st::table({"wall", "t_ms", "dt_mean_us", "dt_top_us", "steps", "seconds_per_step", "hours_to_100ms", "wall_displacement_um",
                             "slip_rms_end_um_s", "min_gap_um_near", "min_gap_um_far", "tilt_end_deg_near", "tilt_end_deg_far",
                             "rate_over_jeffery_near", "rate_over_jeffery_far"},
                            {"", "ms", "us", "us", "", "s", "h", "um", "um/s", "um", "um", "deg", "deg", "", ""});
     Json cost = st::table({"wall", "h_um", "dt_us", "steps", "seconds", "seconds_per_step", "steps_to_100ms", "hours_to_100ms", "hours_to_go"},
                           {"", "um", "us", "", "s", "s", "", "h", "h"});
+    WallRun runs[3] = {{Wall::tethers, "", "tethers (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm)", 3, series, summary},
+                       {Wall::grid, "_grid_wall", "grid wall", 2, series, summary},
+                       {Wall::rule, "_tether_rule", "tethers following the step (gain 0.5)", 1, series, summary}};
     const st::Sitting sitting(opt);
-    Json ts_rule = ts, sum_rule = sum;
-    for (const Wall w : {Wall::tethers, Wall::grid, Wall::rule}) {
-      const bool seed = w == Wall::tethers;
-      const std::string suffix = seed ? "" : w == Wall::grid ? "_grid_wall" : "_tether_rule", id = "platelets" + suffix;
-      st::SceneRunHooks hooks;
-      hooks.sample = [w](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib, wall_plane(w)); };
-      const std::string text = scene::to_yaml(platelets_scene(s, w), w == Wall::grid ? "chapter5_platelets: two platelets over the grid's flat wall (Sec. 5.2)"
-                                                                                       : "chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)");
-      const run::Cadence every = seed ? run::Cadence{std::max(1L, total / 400)} : run::Cadence{0, s.t_end / 400};
-      const st::SceneRun run = st::run_scene(text, id, every, opt.keeps_runs(), opt, hooks, sitting.remaining() / (seed ? 3 : w == Wall::grid ? 2 : 1));
-      std::vector<double> t;
-      double displacement = 0;  // the largest over the run; the slip at its end (at t = 0 it is the initial shear's, gdot x 1 um)
-      for (const auto& r : run.samples) t.push_back(r[0]), displacement = std::max(displacement, r[r.size() - 2]);
-      const double slip = run.samples.back().back();
-      Platelet p[2];
-      for (int c = 0; c < 2; ++c) {
-        p[c] = analyse(run.samples, t, c, gdot, seed ? ts : w == Wall::grid ? ts_grid : ts_rule);
-        report(p[c], c, t.back() - t.front(), seed ? sum : w == Wall::grid ? sum_grid : sum_rule, seed ? results["values"] : ignored, opt);
-      }
-      Json& V = results["values"];
-      V["endothelium_displacement_um" + suffix] = displacement / units::um;
-      V["completed" + suffix] = run.stopped.empty() ? 1.0 : 0.0;
-      st::record_run(results, id, run.progress(s.t_end));
-      // The cost: time per step and the time to the seed's 100 ms at the mean step so far.
-      const double t_now = t.back(), mean_dt = run.steps > 0 ? t_now / double(run.steps) : s.dt, sps = run.seconds_per_step();
-      const double steps_100 = std::round(100 * ms / mean_dt);
-      cost["rows"].push(row({id, 16.0 / s.cells_x, mean_dt / us, double(run.steps), run.seconds, sps, steps_100, steps_100 * sps / 3600,
-                             (s.t_end - t_now) / mean_dt * sps / 3600}));
-      walls["rows"].push(row({seed ? "tethers (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm)" : w == Wall::grid ? "grid wall" : "tethers following the step (gain 0.5)",
-                              t_now / ms, mean_dt / us,
-                              s.dt * (seed ? 1 : 16) / us, double(run.steps), sps, steps_100 * sps / 3600, displacement / units::um, slip / units::um,
-                              p[0].min_gap / units::um, p[1].min_gap / units::um, p[0].tilt.back() * 180 / pi, p[1].tilt.back() * 180 / pi,
-                              p[0].tilt_rate / p[0].jeffery_rate, p[1].tilt_rate / p[1].jeffery_rate}));
-      if (!seed)
-        for (int c = 0; c < 2; ++c) {
-          const std::string k = (c == 0 ? "_near" : "_far") + suffix;
-          V["min_gap_um" + k] = p[c].min_gap / units::um;
-          V["rate_over_jeffery" + k] = p[c].tilt_rate / p[c].jeffery_rate;
-          V["volume_change" + k] = p[c].volume_change;
-        }
+    for (WallRun& w : runs) run_wall(w, s, sitting, opt, results, walls, cost);
+    for (const WallRun& w : runs) {
+      results["tables"]["platelets" + w.suffix] = w.series;
+      results["tables"]["summary" + w.suffix] = w.summary;
     }
-    results["tables"]["platelets"] = ts;
-    results["tables"]["platelets_grid_wall"] = ts_grid;
-    results["tables"]["summary"] = sum;
-    results["tables"]["summary_grid_wall"] = sum_grid;
-    results["tables"]["platelets_tether_rule"] = ts_rule;
-    results["tables"]["summary_tether_rule"] = sum_rule;
     results["tables"]["wall_treatments"] = walls;
     results["tables"]["cost"] = cost;
     st::write_results(opt, results);

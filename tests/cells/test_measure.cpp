@@ -90,5 +90,29 @@ TEST(Measure, RevolutionStrainOfASteadyTurn) {
   EXPECT_TRUE(std::isnan(revolution_strain(s, a, -1)));   // before the samples
 }
 
+TEST(CellShape, AxesAndExtentsOfARotatedEllipsoid) {
+  // Points on an ellipsoid with semi-axes 3, 2, 1 along x, y, z, rotated by 30 deg about x, at (5, 6, 7).
+  const index_t n = 2000;
+  std::vector<double> X(3 * n);
+  const double c = std::cos(pi / 6), s = std::sin(pi / 6);
+  for (index_t i = 0; i < n; ++i) {
+    const double z = -1 + (2 * i + 1.0) / n, lat = std::asin(z), lon = std::sqrt(pi * n) * lat;  // a Bauer spiral
+    const double p[3] = {3 * std::cos(lon) * std::cos(lat), 2 * std::sin(lon) * std::cos(lat), 1 * z};
+    X[i] = 5 + p[0];
+    X[n + i] = 6 + c * p[1] - s * p[2];
+    X[2 * n + i] = 7 + s * p[1] + c * p[2];
+  }
+  const CellShape sh = cell_shape(X, n, 1, 0);
+  EXPECT_NEAR(sh.center[0], 5, 1e-3);
+  EXPECT_NEAR(sh.center[1], 6, 1e-3);
+  EXPECT_NEAR(sh.center[2], 7, 1e-3);
+  // Short axis: the rotated z axis (0, -sin, cos); long axis x.
+  EXPECT_NEAR(std::abs(sh.axes[0][1] * -s + sh.axes[0][2] * c), 1, 1e-6);
+  EXPECT_NEAR(std::abs(sh.axes[2][0]), 1, 1e-6);
+  EXPECT_NEAR(sh.extent[0], 2, 1e-2);
+  EXPECT_NEAR(sh.extent[2], 6, 1e-2);
+  EXPECT_THROW(cell_shape(X, n, 2, 0), InputError);  // sizes that do not match
+}
+
 }  // namespace
 }  // namespace rbfib::cells

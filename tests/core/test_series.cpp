@@ -58,3 +58,9 @@ TEST(Series, RisingCrossingInLogX) {
   EXPECT_TRUE(std::isnan(rising_crossing_log({5, 10}, {0.2, 0.5}, 1.0)));
   EXPECT_TRUE(std::isnan(rising_crossing_log({5, 10}, {1.2, 1.5}, 1.0)));
 }
+
+TEST(Series, UnwrapContinuesAnglesAcrossThePeriod) {
+  const std::vector<double> a = unwrap({3.0, -3.0, -0.2}, 2 * M_PI);
+  EXPECT_NEAR(a[1], -3.0 + 2 * M_PI, 1e-12);
+  EXPECT_NEAR(a[2], -0.2 + 2 * M_PI, 1e-12);
+}

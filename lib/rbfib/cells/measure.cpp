@@ -10,6 +10,7 @@ namespace rbfib::cells {
 
 namespace {
 double dot(const double* x, const Vec3& e) { return x[0] * e[0] + x[1] * e[1] + x[2] * e[2]; }
+double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 }  // namespace
 
 std::vector<double> cell_points(const std::vector<double>& X, index_t n, index_t N, index_t c) {
@@ -100,6 +101,80 @@ double revolution_strain(const std::vector<double>& s, const std::vector<double>
   for (std::size_t i = i0 + 1; i < s.size(); ++i)
     if (angle[i] <= target) return s[i - 1] + (s[i] - s[i - 1]) * (angle[i - 1] - target) / (angle[i - 1] - angle[i]) - s0;
   return NAN;
+}
+
+void symmetric_eigen3(const std::array<Vec3, 3>& A0, Vec3& values, std::array<Vec3, 3>& vectors) {
+  std::array<Vec3, 3> A = A0, V{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};  // V: columns are eigenvectors
+  for (int sweep = 0; sweep < 50; ++sweep) {
+    const double off = A[0][1] * A[0][1] + A[0][2] * A[0][2] + A[1][2] * A[1][2];
+    const double diag = A[0][0] * A[0][0] + A[1][1] * A[1][1] + A[2][2] * A[2][2];
+    if (off <= 1e-30 * diag || off == 0) break;
+    for (int p = 0; p < 2; ++p)
+      for (int q = p + 1; q < 3; ++q) {
+        if (A[p][q] == 0) continue;
+        const double theta = (A[q][q] - A[p][p]) / (2 * A[p][q]);
+        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
+        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
+        for (int k = 0; k < 3; ++k) {  // A <- A J
+          const double akp = A[k][p], akq = A[k][q];
+          A[k][p] = c * akp - s * akq;
+          A[k][q] = s * akp + c * akq;
+        }
+        for (int k = 0; k < 3; ++k) {  // A <- J^T A
+          const double apk = A[p][k], aqk = A[q][k];
+          A[p][k] = c * apk - s * aqk;
+          A[q][k] = s * apk + c * aqk;
+        }
+        for (int k = 0; k < 3; ++k) {
+          const double vkp = V[k][p], vkq = V[k][q];
+          V[k][p] = c * vkp - s * vkq;
+          V[k][q] = s * vkp + c * vkq;
+        }
+      }
+  }
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&](int a, int b) { return A[a][a] < A[b][b]; });
+  for (int j = 0; j < 3; ++j) {
+    values[j] = A[order[j]][order[j]];
+    for (int k = 0; k < 3; ++k) vectors[j][k] = V[k][order[j]];
+  }
+}
+
+CellShape cell_shape(const std::vector<double>& X, index_t n, index_t N, index_t c) {
+  require(n > 0 && N > 0 && long(X.size()) == 3 * N * n, "cell_shape positions", X.size(),
+          "expected 3 N n = " + to_text(3 * N * n) + " values (N = " + to_text(N) + " cells of n = " + to_text(n) + " sites)");
+  require(c >= 0 && c < N, "cell_shape cell", c, "expected a cell index below " + to_text(N));
+  auto x = [&](int d, index_t i) { return X[std::size_t((d * N + c) * n + i)]; };
+  CellShape s;
+  for (int d = 0; d < 3; ++d) {
+    double sum = 0;
+    for (index_t i = 0; i < n; ++i) sum += x(d, i);
+    s.center[d] = sum / double(n);
+  }
+  std::array<Vec3, 3> M{};
+  for (index_t i = 0; i < n; ++i) {
+    const Vec3 r{x(0, i) - s.center[0], x(1, i) - s.center[1], x(2, i) - s.center[2]};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) M[a][b] += r[a] * r[b] / double(n);
+  }
+  Vec3 values;
+  symmetric_eigen3(M, values, s.axes);
+  for (int a = 0; a < 3; ++a) {
+    double lo = 1e300, hi = -1e300;
+    for (index_t i = 0; i < n; ++i) {
+      const double q = (x(0, i) - s.center[0]) * s.axes[a][0] + (x(1, i) - s.center[1]) * s.axes[a][1] +
+                       (x(2, i) - s.center[2]) * s.axes[a][2];
+      lo = std::min(lo, q);
+      hi = std::max(hi, q);
+    }
+    s.extent[a] = hi - lo;
+  }
+  return s;
+}
+
+double angle_between_axes(const Vec3& a, const Vec3& b) {
+  const double c = std::abs(dot3(a, b)) / std::sqrt(dot3(a, a) * dot3(b, b));
+  return std::acos(std::min(1.0, c));
 }
 
 }  // namespace rbfib::cells

@@ -2,8 +2,8 @@
 // Measures of placed cells from their sites (data or sample sites, cm): one cell's points out of a
 // batch, extents along directions about a centre (the nearest periodic image), the outline seen
 // along a direction (a section and a silhouette), the profile's inclination and Taylor deformation
-// in a coordinate plane, the site farthest along a direction, and the strain of one revolution of
-// a tracked angle. For the studies of cells in flow (diss. Secs. 5.1.2, 5.1.3: a cell in shear,
+// in a coordinate plane, the site farthest along a direction, the strain of one revolution of a
+// tracked angle, and a cell's principal axes and extents. For the studies of cells in flow (diss. Secs. 5.1.2, 5.1.3: a cell in shear,
 // two cells pushed together).
 // Points of one cell: n x 3 column-major, X[d n + i]; a batch's: n x 3N, X[(d N + c) n + i].
 #include "rbfib/core/exec.hpp"
@@ -49,5 +49,26 @@ index_t farthest_along(const std::vector<double>& X, index_t n, const Vec3& cent
 /// by 2 pi, one full clockwise revolution of a tracked material point, linear between samples;
 /// NaN when s0 lies outside the samples or they end first. For a periodic motion, its period.
 double revolution_strain(const std::vector<double>& s, const std::vector<double>& angle, double s0);
+
+/// Shape and orientation of one cell from its data sites (material points): the second-moment
+/// tensor M = (1/n) sum_i (X_i - c)(X_i - c)^T about their mean c; its eigenvectors are the cell's
+/// principal axes, the one of the smallest eigenvalue the short (symmetry) axis of a disc-like
+/// cell; extents max - min of the sites' projections on each axis (thickness and diameters, cm).
+/// For cells in shear flow (diss. Secs. 5.1.2 and 5.2: tumbling, tank-treading, wobbling platelets).
+struct CellShape {
+  Vec3 center{};               ///< mean of the data sites (cm)
+  std::array<Vec3, 3> axes{};  ///< principal axes, unit, by increasing second moment (axes[0]: short axis)
+  Vec3 extent{};               ///< extent along each axis (cm)
+};
+
+/// The shape of cell c of a batch from its positions (n x 3N).
+CellShape cell_shape(const std::vector<double>& X, index_t n, index_t N, index_t c);
+
+/// Symmetric 3 x 3 eigenproblem by cyclic Jacobi rotations: eigenvalues ascending, eigenvectors
+/// (unit) in the same order.
+void symmetric_eigen3(const std::array<Vec3, 3>& A, Vec3& values, std::array<Vec3, 3>& vectors);
+
+/// Angle between two axes, sign-blind (rad, in [0, pi/2]).
+double angle_between_axes(const Vec3& a, const Vec3& b);
 
 }  // namespace rbfib::cells

@@ -85,4 +85,13 @@ double successive_order(double ratio, int r) {
   return 0.5 * (lo + hi);
 }
 
+std::vector<double> unwrap(const std::vector<double>& angles, double period) {
+  std::vector<double> out(angles);
+  for (std::size_t i = 1; i < out.size(); ++i) {
+    const double step = angles[i] - angles[i - 1];
+    out[i] = out[i - 1] + step - period * std::round(step / period);
+  }
+  return out;
+}
+
 }  // namespace rbfib

@@ -43,4 +43,8 @@ double oscillation_frequency(const std::vector<double>& t, const std::vector<dou
 /// p). NaN when the ratio is out of reach of p in [1e-3, 30].
 double successive_order(double ratio, int r);
 
+/// Continues a sequence of angles (rad) across the jumps of `period` (2 pi for a direction,
+/// pi for an axis) so that it varies continuously.
+std::vector<double> unwrap(const std::vector<double>& angles, double period);
+
 }  // namespace rbfib
