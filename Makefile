@@ -93,7 +93,7 @@ keep-%:
 POINT_SET_DEGREES := 22 44 67
 point-sets: build
 	@for N in $(POINT_SET_DEGREES); do \
-	  $(BUILD)/tools/tool_max_determinant_points --degree $$N --out reference/point_sets/max_determinant_N$$N.txt || exit 1; \
+	  $(BUILD)/bin/max_determinant_points --degree $$N --out reference/point_sets/max_determinant_N$$N.txt || exit 1; \
 	done
 
 clean:

@@ -3,7 +3,7 @@
 // run (a square DGEMM for dense products, a streaming triad for bandwidth), the machine's state
 // recorded beside the times (OpenMP wait policy, load average), and the largest differences of
 // device vectors against a reference (the error of a fast path against the serial one).
-#include "common/json.hpp"
+#include "common/study.hpp"
 #include "rbfib/core/exec.hpp"
 
 #include <array>

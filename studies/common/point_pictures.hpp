@@ -2,7 +2,7 @@
 // Point pictures of a surface for the harness's figures (style ".", aspect: equal, group: label):
 // rows (panel, label, a, b), the sites facing the viewer projected onto two screen axes, labelled
 // by bins of a field so that the legend lists the bins in order.
-#include "common/json.hpp"
+#include "common/study.hpp"
 
 #include <functional>
 #include <string>

@@ -2,7 +2,8 @@
 // What every study driver shares: the command line (--scale quick|full, --out DIR), the echo of
 // parameters, provenance (compiler, backend, machine, threads), timing as the median of repeats,
 // and the one machine-readable results file DIR/results.json (format: harness/FORMAT.md).
-#include "common/json.hpp"
+#include "rbfib/core/series.hpp"
+#include "rbfib/io/json.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -11,6 +12,9 @@
 #include <vector>
 
 namespace rbfib::study {
+
+using io::Json, io::row, io::number;  // results.json (harness/FORMAT.md)
+using rbfib::median, rbfib::slope, rbfib::power_law_order;  // series statistics (core/series.hpp)
 
 enum class Scale { quick, full };
 
@@ -73,16 +77,6 @@ void record_run(Json& results, const std::string& id, const RunProgress& p);
 
 /// Prints "[name] message" to stdout, flushed (progress on long runs).
 void log(const Options& opt, const std::string& message);
-
-/// Least-squares slope of y against x (NaN for fewer than two points).
-double slope(const std::vector<double>& x, const std::vector<double>& y);
-
-/// Least-squares power-law order p of e ~ c x^-p, -slope(log x, log e): the paper's "power law
-/// function fits" of errors against resolution.
-double power_law_order(const std::vector<double>& x, const std::vector<double>& e);
-
-/// Median of a sample (the mean of the two middle values for an even count; NaN when empty).
-double median(std::vector<double> values);
 
 /// Median wall time in seconds of `repeats` calls of fn.
 double median_seconds(int repeats, const std::function<void()>& fn);

@@ -1,6 +1,6 @@
 #pragma once
 // Results tables whose only units are seconds: the common case of the drivers' tables.
-#include "common/json.hpp"
+#include "common/study.hpp"
 
 #include <string>
 #include <vector>

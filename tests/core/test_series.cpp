@@ -64,3 +64,12 @@ TEST(Series, UnwrapContinuesAnglesAcrossThePeriod) {
   EXPECT_NEAR(a[1], -3.0 + 2 * M_PI, 1e-12);
   EXPECT_NEAR(a[2], -0.2 + 2 * M_PI, 1e-12);
 }
+
+TEST(Series, SlopePowerLawOrderAndMedian) {
+  EXPECT_NEAR(slope({0, 1, 2, 3}, {1, 3, 5, 7}), 2, 1e-12);
+  EXPECT_NEAR(power_law_order({10, 20, 40}, {1e-2, 2.5e-3, 6.25e-4}), 2, 1e-12);
+  EXPECT_TRUE(std::isnan(slope({1}, {1})));
+  EXPECT_EQ(median({3, 1, 2}), 2);
+  EXPECT_EQ(median({4, 1, 2, 3}), 2.5);
+  EXPECT_TRUE(std::isnan(median({})));
+}

@@ -94,4 +94,28 @@ std::vector<double> unwrap(const std::vector<double>& angles, double period) {
   return out;
 }
 
+double slope(const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = x.size();
+  if (n < 2 || y.size() != n) return std::nan("");
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < n; ++i) mx += x[i] / double(n), my += y[i] / double(n);
+  double sxy = 0, sxx = 0;
+  for (std::size_t i = 0; i < n; ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
+  return sxy / sxx;
+}
+
+double power_law_order(const std::vector<double>& x, const std::vector<double>& e) {
+  std::vector<double> lx(x.size()), le(e.size());
+  for (std::size_t i = 0; i < x.size(); ++i) lx[i] = std::log(x[i]);
+  for (std::size_t i = 0; i < e.size(); ++i) le[i] = std::log(e[i]);
+  return -slope(lx, le);
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return NAN;
+  std::sort(values.begin(), values.end());
+  const std::size_t m = values.size() / 2;
+  return values.size() % 2 ? values[m] : 0.5 * (values[m - 1] + values[m]);
+}
+
 }  // namespace rbfib

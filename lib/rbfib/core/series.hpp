@@ -1,6 +1,7 @@
 #pragma once
-// Measures of a sampled series y(x): the least-squares line over a window of x, and the longest
-// stretch of samples where a condition holds.
+// Measures of a sampled series y(x): the least-squares line over a window of x (and its slope and a
+// power law's order over all of it), the longest stretch of samples where a condition holds,
+// crossings, oscillation frequencies, orders of convergence, medians, and angles unwrapped.
 #include <cstddef>
 #include <vector>
 
@@ -46,5 +47,15 @@ double successive_order(double ratio, int r);
 /// Continues a sequence of angles (rad) across the jumps of `period` (2 pi for a direction,
 /// pi for an axis) so that it varies continuously.
 std::vector<double> unwrap(const std::vector<double>& angles, double period);
+
+/// Least-squares slope of y against x (NaN for fewer than two points).
+double slope(const std::vector<double>& x, const std::vector<double>& y);
+
+/// Least-squares power-law order p of e ~ c x^-p, -slope(log x, log e): the paper's "power law
+/// function fits" of errors against resolution.
+double power_law_order(const std::vector<double>& x, const std::vector<double>& e);
+
+/// Median of a sample (the mean of the two middle values for an even count; NaN when empty).
+double median(std::vector<double> values);
 
 }  // namespace rbfib

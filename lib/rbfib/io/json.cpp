@@ -1,10 +1,10 @@
-#include "common/json.hpp"
+#include "rbfib/io/json.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
-namespace rbfib::study {
+namespace rbfib::io {
 
 Json& Json::operator[](const std::string& key) {
   if (std::holds_alternative<std::nullptr_t>(v_)) v_ = Object{};
@@ -84,4 +84,4 @@ void Json::write(std::ostream& os, int indent) const {
   }
 }
 
-}  // namespace rbfib::study
+}  // namespace rbfib::io

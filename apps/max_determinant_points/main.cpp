@@ -3,7 +3,7 @@
 // reference/point_sets (N = 22, 44, 67: n = 529, 2025, 4624, the paper's evaluation sizes, Sec. 4.1)
 // were written by this tool; `make point-sets` regenerates them.
 //
-// Usage: tool_max_determinant_points --degree N --out FILE [--max-iterations K]
+// Usage: max_determinant_points --degree N --out FILE [--max-iterations K]
 // Cost: about 3 m^3 flops per iteration (LU and inverse of the m x m harmonic matrix, m = (N+1)^2),
 // a few hundred iterations: seconds at N = 22, minutes at N = 44, most of an hour at N = 67 on two
 // cores.
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       if (a == "--help" || a == "-h") {
-        std::cout << "usage: tool_max_determinant_points --degree N --out FILE [--max-iterations K]\n";
+        std::cout << "usage: max_determinant_points --degree N --out FILE [--max-iterations K]\n";
         return 0;
       }
       if (i + 1 >= argc) throw InputError("argument", a, "needs a value");
@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> header = {
         "maximal-determinant-like sites on S^2, harmonic degree N = " + to_text(degree) +
             ", n = (N+1)^2 = " + to_text(sh_count(degree)),
-        "generator: rbfib tool_max_determinant_points (L-BFGS on log|det Y| from the Bauer spiral)", line};
+        "generator: rbfib max_determinant_points (L-BFGS on log|det Y| from the Bauer spiral)", line};
     std::snprintf(line, sizeof line, "eq. (45) weights: min %.6g, max %.6g (times n / 4 pi: %.4f .. %.4f), residual %.3g",
                   wmin, wmax, wmin * sh_count(degree) / (4 * rbfib::pi),
                   wmax * sh_count(degree) / (4 * rbfib::pi), w.residual);
@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
     std::cout << "written: " << out << std::endl;
     return r.converged ? 0 : 1;
   } catch (const std::exception& e) {
-    std::cerr << "tool_max_determinant_points: " << e.what() << std::endl;
+    std::cerr << "max_determinant_points: " << e.what() << std::endl;
     return 2;
   }
 }

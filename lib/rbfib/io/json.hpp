@@ -1,5 +1,6 @@
 #pragma once
-// A small JSON value for the studies' machine-readable results (results.json). Writing only.
+// A small JSON value for machine-readable results (the studies' results.json, harness/FORMAT.md):
+// objects keep their insertion order; writing only.
 #include <cmath>
 #include <initializer_list>
 #include <map>
@@ -10,7 +11,7 @@
 #include <variant>
 #include <vector>
 
-namespace rbfib::study {
+namespace rbfib::io {
 
 class Json {
  public:
@@ -51,4 +52,4 @@ inline Json row(std::initializer_list<Json> values) { return Json(Json::Array(va
 /// A number, or null when it is not finite (JSON has no NaN or infinity).
 inline Json number(double x) { return std::isfinite(x) ? Json(x) : Json(); }
 
-}  // namespace rbfib::study
+}  // namespace rbfib::io
