@@ -153,6 +153,11 @@ void write_checkpoint(const std::string& path, const std::string& scene_yaml, co
       Id shells = h5::create_group(file, "shells");
       for (std::size_t q = 0; q < c.shells.size(); ++q)
         h5::write(shells, std::to_string(q), c.shells[q].data(), {hsize_t(c.shells[q].size())});
+      if (!c.cortices.empty()) {  // written only when there are any: other checkpoints stay as they were
+        Id cortices = h5::create_group(file, "cortices");
+        for (std::size_t q = 0; q < c.cortices.size(); ++q)
+          h5::write(cortices, std::to_string(q), c.cortices[q].data(), {hsize_t(c.cortices[q].size())});
+      }
     }
     h5::flush_and_sync(file, tmp);
   }
@@ -196,13 +201,16 @@ Checkpoint read_checkpoint(const std::string& path) {
     auto& into = std::string(group) == "batches" ? k.state.batches : k.state.points;
     for (hsize_t i = 0; i < info.nlinks; ++i) into.push_back(r.array(g, std::to_string(i).c_str()));
   }
-  if (H5Lexists(file, "shells", H5P_DEFAULT) > 0) {  // absent before LDSM shells joined the step: none
-    Id g{H5Gopen2(file, "shells", H5P_DEFAULT), H5Gclose};
+  // Absent: none (shells before LDSM shells joined the step; cortices unless a scene has one).
+  for (const char* group : {"shells", "cortices"}) {
+    if (H5Lexists(file, group, H5P_DEFAULT) <= 0) continue;
+    Id g{H5Gopen2(file, group, H5P_DEFAULT), H5Gclose};
     H5G_info_t info;
     H5Gget_info(g, &info);
+    auto& into = std::string(group) == "shells" ? k.state.shells : k.state.cortices;
     for (hsize_t i = 0; i < info.nlinks; ++i) {
       const dvec x = r.array(g, std::to_string(i).c_str());
-      k.state.shells.emplace_back(x.begin(), x.end());
+      into.emplace_back(x.begin(), x.end());
     }
   }
   if (version == format_1) return k;

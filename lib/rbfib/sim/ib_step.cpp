@@ -73,6 +73,7 @@ ImmersedBoundary::Carried ImmersedBoundary::carried() const {
   for (const auto* b : batches_) c.batches.push_back(b->batch().state().storage());
   for (const auto* q : points_) c.points.push_back(q->points().X);
   for (const auto* q : shells_) c.shells.push_back(q->shell().X);
+  for (const auto* q : cortices_) c.cortices.push_back(q->cortex().X);
   c.clock = clock();
   return c;
 }
@@ -99,9 +100,15 @@ void ImmersedBoundary::restore(const Carried& c) {
   for (std::size_t q = 0; q < shells_.size(); ++q)
     require(c.shells[q].size() == shells_[q]->shell().X.size(), "checkpoint: LDSM shell " + to_text(q) + " size",
             c.shells[q].size(), "must equal this setup's " + to_text(shells_[q]->shell().X.size()));
+  require(c.cortices.size() == cortices_.size(), "checkpoint: cortices", c.cortices.size(),
+          "must equal this setup's " + to_text(cortices_.size()));
+  for (std::size_t q = 0; q < cortices_.size(); ++q)
+    require(c.cortices[q].size() == cortices_[q]->cortex().X.size(), "checkpoint: cortex " + to_text(q) + " size",
+            c.cortices[q].size(), "must equal this setup's " + to_text(cortices_[q]->cortex().X.size()));
   require(std::isfinite(c.clock.dt) && c.clock.dt > 0, "checkpoint: dt", c.clock.dt, "must be positive");
   fluid_->state() = c.fluid;
   for (std::size_t q = 0; q < shells_.size(); ++q) shells_[q]->shell().X = c.shells[q];
+  for (std::size_t q = 0; q < cortices_.size(); ++q) cortices_[q]->cortex().X = c.cortices[q];
   for (std::size_t b = 0; b < batches_.size(); ++b) batch(index_t(b)).state().storage() = c.batches[b];
   for (std::size_t p = 0; p < points_.size(); ++p) points_[p]->points().X = c.points[p];
   steps_ = c.clock.step;
@@ -155,6 +162,19 @@ index_t ImmersedBoundary::add(TetheredPoints p) {
 }
 
 index_t ImmersedBoundary::add(LdsmShell shell) { return keep(std::make_unique<LdsmShellSet>(std::move(shell)), shells_); }
+
+index_t ImmersedBoundary::add(Cortex cortex, const LagrangianSet& membrane) {
+  const std::string field = "cortex '" + cortex.name + "'";
+  require(options_.coupling == Coupling::forward_euler, field + ": coupling", to_string(options_.coupling),
+          "must be forward_euler (Chapter 3's update, Sec. 3.3: the cortex's forces act at X^n)");
+  bool ours = false;
+  for (const auto& s : sets_) ours = ours || s.get() == &membrane;
+  require(ours, field + ": membrane", membrane.name(), "must be a set of this step, added before the cortex");
+  for (const CellBatchSet* b : batches_)
+    if (b == &membrane)
+      require(b->batch().size() == 1, field + ": membrane cells", b->batch().size(), "must be one cell");
+  return keep(std::make_unique<CortexSet>(std::move(cortex), membrane), cortices_);
+}
 
 IbStepReport ImmersedBoundary::attempt() {
   IbStepReport r;

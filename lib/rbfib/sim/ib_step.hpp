@@ -44,6 +44,7 @@
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/fluid/fluid_step.hpp"
 #include "rbfib/ib/interaction.hpp"
+#include "rbfib/sim/cortex.hpp"
 #include "rbfib/sim/lagrangian.hpp"
 
 #include <memory>
@@ -134,6 +135,14 @@ class ImmersedBoundary {
   index_t add(LdsmShell shell);
   const LdsmShellSet& shell(index_t s) const { return *shells_.at(s); }
   index_t shells() const { return index_t(shells_.size()); }
+  /// Adds the cortex of a blebbing cell linked to `membrane`, a set of this step added before it
+  /// (batch_set(b) of one cell, or shell(s)); returns its index. Throws InputError naming the field
+  /// for another coupling than forward_euler, a membrane not of this step or of another site
+  /// count, or bad input (sim/cortex.hpp).
+  index_t add(Cortex cortex, const LagrangianSet& membrane);
+  const CortexSet& cortex(index_t c) const { return *cortices_.at(c); }
+  CortexSet& cortex(index_t c) { return *cortices_.at(c); }
+  index_t cortices() const { return index_t(cortices_.size()); }
   const CellBatchSet& batch_set(index_t b) const { return *batches_.at(b); }
   cells::Batch& batch(index_t b) { return batches_.at(b)->batch(); }
   const cells::Batch& batch(index_t b) const { return batches_.at(b)->batch(); }
@@ -159,6 +168,7 @@ class ImmersedBoundary {
     std::vector<dvec> batches;  ///< each batch's state storage (n_d x 6N, column-major)
     std::vector<dvec> points;   ///< each point set's positions
     std::vector<std::vector<double>> shells;  ///< each LDSM shell's vertices
+    std::vector<std::vector<double>> cortices;  ///< each cortex's sites
     Clock clock;
   };
   Carried carried() const;
@@ -206,6 +216,7 @@ class ImmersedBoundary {
   std::vector<CellBatchSet*> batches_;
   std::vector<TetheredPointSet*> points_;
   std::vector<LdsmShellSet*> shells_;
+  std::vector<CortexSet*> cortices_;
   VectorField f_, scratch_;  // the force density; a scratch field for the non-binned spreadings
   long steps_ = 0;
   int level_ = 0, allowing_ = 0;  // adaptive step: current level, consecutive steps allowing a doubling

@@ -42,6 +42,10 @@ void advance_in_frame(double* X, const double* X0, const double* U, double c, co
 }
 }  // namespace
 
+std::vector<double> LagrangianSet::force_sites() const {
+  throw InputError(name() + ": force sites", "requested", "this set offers none to link to");
+}
+
 void interpolate_at(ib::Interaction& ib, const ib::SortedPoints& s, const VectorField& u, dvec& U, const std::string& who) {
   U.resize(static_cast<std::size_t>(3 * s.size()));
   ib.interpolate(s, u, ptr(U));

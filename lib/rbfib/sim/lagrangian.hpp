@@ -50,6 +50,10 @@ class LagrangianSet {
   virtual void update(double dt, const std::array<double, 3>& u_frame) = 0;
   /// Seconds of the last compute_force() spent in dense products (0 for a set without them).
   virtual double seconds_force_products() const { return 0; }
+  /// Where the last compute_force()'s forces act, n x 3 column-major (cm, a host copy): what a set
+  /// linked to this one reads (the cortex's adhesion, sim/cortex.hpp). Throws InputError for a
+  /// set that offers none.
+  virtual std::vector<double> force_sites() const;
 };
 
 /// U = I u at sorted points; throws NumericalError (non-finite) naming `who` when U is not finite.
@@ -78,6 +82,8 @@ class CellBatchSet final : public LagrangianSet {
   void interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) override;
   void update(double dt, const std::array<double, 3>& u_frame) override;
   double seconds_force_products() const override { return timings_.products(); }
+  /// The sample sites of the last force call (every cell's, cell after cell).
+  std::vector<double> force_sites() const override { return forces_.positions.to_host(); }
 
   cells::Batch& batch() { return batch_; }
   const cells::Batch& batch() const { return batch_; }
@@ -176,6 +182,8 @@ class LdsmShellSet final : public LagrangianSet {
   void spread(ib::Interaction& ib, ib::Spreading algorithm, VectorField& f, VectorField& scratch) override;
   void interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) override;
   void update(double dt, const std::array<double, 3>& u_frame) override;
+  /// The vertices where the last forces were computed (X^n, or X* once predicted).
+  std::vector<double> force_sites() const override { return shell_.X; }
 
   const LdsmShell& shell() const { return shell_; }
   LdsmShell& shell() { return shell_; }
