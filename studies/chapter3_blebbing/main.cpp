@@ -61,18 +61,18 @@ std::vector<Case> cases(bool full) {
 Model scale_model(bool full) {
   Model m;
   m.eta = full ? 32 : 16;
-  m.dt = 1e-4;
+  m.dt = 2e-4;  // half the largest step the scan finds stable at both scales (4e-4 s; 8e-4 s inverts a triangle)
   m.t_equilibrate = full ? 0.2 : 0.1;
   m.t_bleb = full ? 15 : 1;
-  m.record_every = full ? 500 : 100;  // every 0.05 s, 0.01 s
-  m.view_every = full ? 10000 : 2500;  // every 1 s, 0.25 s
+  m.record_every = full ? 250 : 50;     // every 0.05 s, 0.01 s
+  m.view_every = full ? 5000 : 1250;    // every 1 s, 0.25 s
   return m;
 }
 
 /// What one run gives the checks.
 struct Outcome {
   std::string label;
-  double size_end = NAN, volume_change_end = NAN, speed_equilibrated = NAN, seconds = NAN, per_step = NAN;
+  double size_end = NAN, volume_change_end = NAN, speed_equilibrated = NAN, speed_rms_equilibrated = NAN, seconds = NAN, per_step = NAN;
 };
 
 class Runs {
@@ -86,6 +86,9 @@ class Runs {
     series = st::table({"run", "t", "bleb_size_um", "volume_change_percent", "boundary_speed_um_s", "cortex_radius_um",
                         "link_max_um"},
                        {"", "s", "um", "%", "um/s", "um", "um"});
+    equilibration = st::table({"run", "t", "boundary_speed_max_um_s", "boundary_speed_rms_um_s", "volume_change_percent",
+                               "cortex_radius_um", "link_max_um"},
+                              {"", "s", "um/s", "um/s", "%", "um", "um"});
     sections = st::table({"run", "t", "label", "y_um", "z_um"}, {"", "s", "", "um", "um"});
     curvature = st::table({"run", "angle_deg", "H_mean_per_um", "H_min_per_um", "H_max_per_um"}, {"", "deg", "1/um", "1/um", "1/um"});
   }
@@ -106,8 +109,13 @@ class Runs {
     const Sample* start = nullptr;  // the record at the bleb's start
     for (const Sample& q : s)
       if (!start && q.t >= m.t_equilibrate - 1e-9) start = &q;
+    for (const Sample& q : s)
+      if (q.t <= m.t_equilibrate + 1e-9 && q.t > 0)
+        equilibration["rows"].push(row({c.label, q.t, q.boundary_speed / um, q.boundary_speed_rms / um,
+                                        100 * (q.volume / s.front().volume - 1), q.cortex_radius / um, q.link_max / um}));
     if (start) {
       o.speed_equilibrated = start->boundary_speed / um;
+      o.speed_rms_equilibrated = start->boundary_speed_rms / um;
       for (const Sample& q : s) {
         if (q.t < m.t_equilibrate - 1e-9) continue;
         const double t = q.t - m.t_equilibrate;
@@ -133,7 +141,50 @@ class Runs {
     return o;
   }
 
-  st::Json runs, series, sections, curvature;
+  /// The step scan: LDSM over equilibration and `window` s of bleb at step dt; a row of `scan`.
+  void scan(double dt, double window) {
+    Model m = base_;
+    m.method = chapter3::Method::ldsm;
+    m.dt = dt;
+    m.t_equilibrate = std::round(base_.t_equilibrate / dt) * dt;
+    m.t_bleb = window;
+    m.record_every = std::max(1, int(std::lround(window / dt)));
+    m.view_every = int(m.steps());
+    std::ostringstream label;
+    label << "scan_LDSM_dt" << dt;
+    Run r(m, eval_, opt_.keeps_runs() ? opt_.out_dir + "/run_" + label.str() + ".h5" : std::string(),
+          std::max(0.0, sitting_.remaining()));
+    r.advance();
+    st::RunProgress p{r.done(), r.step() * m.dt, m.steps() * m.dt, r.step(), r.seconds_per_step(), r.failure()};
+    st::record_run(results_, label.str(), p);
+    const bool ok = r.done() && r.failure().empty() && r.series().size() >= 2;
+    const Sample* start = nullptr;
+    for (const Sample& q : r.series())
+      if (!start && q.t >= m.t_equilibrate - 1e-9) start = &q;
+    const Sample& end = r.series().back();
+    const std::string status = !r.done() ? "partial" : (r.failure().empty() ? "finished" : "stopped: " + r.failure());
+    scan_rows["rows"].push(row({label.str(), dt, status, double(r.step()), double(m.steps()),
+                                ok && start ? number((end.bleb_size - start->bleb_size) / um) : st::Json(),
+                                ok ? number(100 * (end.volume / r.series().front().volume - 1)) : st::Json(),
+                                ok && start ? number(start->boundary_speed / um) : st::Json(), ok ? number(end.link_max / um) : st::Json(),
+                                number(r.seconds_per_step())}));
+    scanned_.push_back({dt, ok && start ? (end.bleb_size - start->bleb_size) / um : NAN});
+    st::log(opt_, label.str() + ": " + status);
+  }
+
+  /// The largest step of the scan that finished with the bleb size within 1% of the smallest
+  /// step's (NaN before the scan has finished).
+  double largest_stable_dt() const {
+    double best = NAN;
+    for (const auto& [dt, size] : scanned_)
+      if (std::isfinite(size) && std::abs(size / scanned_.front().second - 1) <= 0.01) best = dt;
+    return best;
+  }
+
+  st::Json runs, series, equilibration, sections, curvature;
+  st::Json scan_rows = st::table({"run", "dt", "status", "steps_done", "steps_needed", "bleb_size_um", "volume_change_percent",
+                                  "boundary_speed_equilibrated_um_s", "link_max_um", "seconds_per_step"},
+                                 {"", "s", "", "", "", "um", "%", "um/s", "um", "s"});
 
  private:
   /// Fig. 11's sections (LDSM and the middle m) at the kept times from the bleb's start, and Fig.
@@ -159,6 +210,7 @@ class Runs {
   st::Json& results_;
   Model base_;
   const chapter3::EvaluationSet& eval_;
+  std::vector<std::pair<double, double>> scanned_;  // the step scan: dt and bleb size (um; NaN: stopped)
 };
 
 }  // namespace
@@ -194,13 +246,17 @@ int main(int argc, char** argv) {
         st::source_path(opt, "reference/point_sets/max_determinant_N" + to_text(N) + ".txt"), N);
     st::log(opt, "sites n = " + to_text(n) + " in " + to_text(eval.seconds) + " s");
 
-    // ---- 2. The runs ------------------------------------------------------------------------------
+    // ---- 2. The step (the paper does not state it): LDSM over equilibration and 0.1 s of bleb at
+    // doubling steps; stable: no numerical stop, and the bleb size within 1% of the smallest step's.
     Runs runs(opt, results, base, eval);
+    for (double dt : {1e-4, 2e-4, 4e-4, 8e-4, 1.6e-3}) runs.scan(dt, 0.1);
+
+    // ---- 3. The runs ------------------------------------------------------------------------------
     std::vector<Case> all = cases(full);
     std::vector<Outcome> out;
     for (std::size_t i = 0; i < all.size(); ++i) out.push_back(runs.run(all[i], i == 0 || i == 2));
 
-    // ---- 3. Values for the checks (Figs. 13-14, the cost) -----------------------------------------
+    // ---- 4. Values for the checks (Figs. 13-14, the cost) -----------------------------------------
     st::Json& V = results["values"];
     const Outcome &ldsm = out[0], &low = out[1], &mid = out[2], &all_m = out[3];
     V["bleb_size_ldsm_um"] = number(ldsm.size_end);
@@ -218,7 +274,9 @@ int main(int argc, char** argv) {
     for (const Outcome* o : {&ldsm, &mid, &all_m}) gap = std::min(gap, std::abs(low.volume_change_end - o->volume_change_end));
     V["volume_change_spread_over_gap_to_m_low"] = number(spread / gap);
     V["boundary_speed_equilibrated_ldsm_um_s"] = number(ldsm.speed_equilibrated);
+    V["boundary_speed_rms_equilibrated_ldsm_um_s"] = number(ldsm.speed_rms_equilibrated);
     V["cost_ratio_shvd_m_n_over_ldsm"] = number(all_m.per_step / ldsm.per_step);
+    V["dt_largest_stable_s"] = number(runs.largest_stable_dt());
     V["cost_ratio_paper"] = 10.0;  // Sec. 6: about 10 hours with SHVD against about 1 hour with LDSM
     // Speed against error: each run's time to solution against its distance from SHVD with m = n
     // (the best resolved: every site carried by the flow) in bleb size and volume change.
@@ -228,13 +286,15 @@ int main(int argc, char** argv) {
       cost["rows"].push(row({o.label, number(o.per_step), number(o.per_step * double(base.steps()) / 3600),
                              number(std::abs(o.size_end - all_m.size_end)), number(std::abs(o.volume_change_end - all_m.volume_change_end))}));
 
-    // ---- 4. Tables and results --------------------------------------------------------------------
+    // ---- 5. Tables and results --------------------------------------------------------------------
     st::Json& T = results["tables"];
     T["runs"] = runs.runs;
     T["series"] = runs.series;
+    T["equilibration"] = runs.equilibration;
     T["sections"] = runs.sections;
     T["curvature"] = runs.curvature;
     T["cost"] = cost;
+    T["dt_scan"] = runs.scan_rows;
     st::write_results(opt, results);
     return 0;
   });

@@ -149,7 +149,8 @@ struct Run::Impl {
     for (std::size_t i = 0; i < jets.size(); ++i) (*H)[i] = surface::point_geometry(jets[i]).H;
   }
 
-  double boundary_speed(const sim::ImmersedBoundary& ib, const std::vector<double>& X) const {
+  /// The largest and the root-mean-square |S* u| over the sites X (cm/s).
+  std::array<double, 2> boundary_speed(const sim::ImmersedBoundary& ib, const std::vector<double>& X) const {
     const MacOperators& ops = ib.fluid().operators();
     ib::Interaction probe({ops.component_box(0), ops.component_box(1), ops.component_box(2)}, ib::Kernel::peskin4);
     dvec Xd(X.begin(), X.end()), Ud;
@@ -157,9 +158,13 @@ struct Run::Impl {
     std::vector<double> U(Ud.size());
     thrust::copy(Ud.begin(), Ud.end(), U.begin());
     const std::size_t n = X.size() / 3;
-    double v = 0;
-    for (std::size_t i = 0; i < n; ++i) v = std::max(v, std::hypot(U[i], U[n + i], U[2 * n + i]));
-    return v;
+    double v = 0, v2 = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double s = std::hypot(U[i], U[n + i], U[2 * n + i]);
+      v = std::max(v, s);
+      v2 += s * s;
+    }
+    return {v, std::sqrt(v2 / double(n))};
   }
 
   void after_step(const sim::ImmersedBoundary& ib, const sim::IbStepReport* r, run::SeriesSet& s) {
@@ -204,9 +209,10 @@ struct Run::Impl {
       if (!bleb_started || !detached[i])
         link = std::max(link, std::hypot(X[i] - Xc[i], X[n + i] - Xc[n + i], X[2 * n + i] - Xc[2 * n + i]));
     }
-    s["samples"].columns = {"t (s)",         "volume (cm^3)",  "area (cm^2)",         "bleb size (cm)",
-                            "ring diameter (cm)", "boundary speed (cm/s)", "cortex radius (cm)", "link max (cm)"};
-    s["samples"].rows.push_back({t, volume, area, top - c[2], diameter, k > 0 ? boundary_speed(ib, X) : 0.0, rc, link});
+    s["samples"].columns = {"t (s)", "volume (cm^3)", "area (cm^2)", "bleb size (cm)", "ring diameter (cm)",
+                            "boundary speed (cm/s)", "boundary speed rms (cm/s)", "cortex radius (cm)", "link max (cm)"};
+    const std::array<double, 2> speed = k > 0 ? boundary_speed(ib, X) : std::array<double, 2>{0, 0};
+    s["samples"].rows.push_back({t, volume, area, top - c[2], diameter, speed[0], speed[1], rc, link});
   }
 
   void collect() {
@@ -215,7 +221,7 @@ struct Run::Impl {
     kept_views.clear();
     seconds = 0;
     if (auto it = s.find("samples"); it != s.end())
-      for (const std::vector<double>& r : it->second.rows) samples.push_back(Sample{r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7]});
+      for (const std::vector<double>& r : it->second.rows) samples.push_back(Sample{r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8]});
     if (auto it = s.find("views"); it != s.end())
       for (const std::vector<double>& r : it->second.rows) {
         const std::size_t n = std::size_t(r[1]);

@@ -69,6 +69,7 @@ struct Sample {
   double bleb_size;     ///< z_top - z_ring (cm), the paper's Fig. 12 before subtracting its start
   double ring_diameter;  ///< the bleb ring's diameter (cm)
   double boundary_speed;  ///< max |S* u| over the membrane sites, the last step's flow (cm/s)
+  double boundary_speed_rms;  ///< its root mean square over the sites (cm/s)
   double cortex_radius;  ///< mean distance of the cortex sites from the centre (cm)
   double link_max;       ///< max |X_mem - X_cortex| over the attached links (cm)
 };
