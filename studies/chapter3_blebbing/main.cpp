@@ -10,7 +10,8 @@
 //            its value at the bleb's start);
 //   Fig. 13  bleb size against time for LDSM and SHVD with three m (the paper: 625, 1,024, 4,761);
 //   Fig. 14  the volume change (V(t) - V(0)) / V(0) in percent for the same runs;
-//   Fig. 15  SHVD's mean curvature after expansion against the polar angle from the bleb's axis;
+//   Fig. 15  the mean curvature after expansion against the polar angle from the bleb's axis (SHVD:
+//            the interpolant's; LDSM: from the edges, signed by the convex hull, as the paper does);
 //   also     the boundary speed at the end of equilibration (the paper: about 0.01 um/s after
 //            0.2 s), the time per step and to solution of each run beside the paper's 10 h (SHVD)
 //            against 1 h (LDSM).
@@ -188,7 +189,8 @@ class Runs {
 
  private:
   /// Fig. 11's sections (LDSM and the middle m) at the kept times from the bleb's start, and Fig.
-  /// 15's curvature bands of SHVD at the last kept time of a finished run.
+  /// 15's curvature bands at the last kept time of a finished run (LDSM: from the edges, signed by
+  /// the convex hull).
   void views(const Case& c, const Run& r, bool section) {
     const Model& m = r.model();
     for (const View& v : r.views()) {
@@ -199,9 +201,10 @@ class Runs {
       for (const auto& yz : section_x(v.X, eval_.tris, m.center[0]))
         sections["rows"].push(row({c.label, t, label.str(), yz[0] / um, yz[1] / um}));
     }
-    if (c.method != chapter3::Method::shvd || !r.done() || r.views().empty()) return;
+    if (!r.done() || r.views().empty()) return;
     const View& v = r.views().back();
-    for (const CurvatureBand& b : curvature_by_angle(v.X, v.H, m.center, 36))
+    const bool ldsm = c.method == chapter3::Method::ldsm;
+    for (const CurvatureBand& b : curvature_by_angle(v.X, ldsm ? ldsm_signed_curvature(v.X, eval_.tris) : v.H, m.center, 36))
       curvature["rows"].push(row({c.label, b.angle_deg, number(b.mean * um), number(b.min * um), number(b.max * um)}));
   }
 

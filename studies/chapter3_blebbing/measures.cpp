@@ -19,6 +19,18 @@ std::vector<std::array<double, 2>> section_x(const std::vector<double>& X, const
   return out;
 }
 
+std::vector<double> ldsm_signed_curvature(const std::vector<double>& X, const std::vector<surface::Triangle>& tris) {
+  const std::size_t n = X.size() / 3;
+  std::vector<double> H = surface::edge_mean_curvature(tris, X), p(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) p[3 * i + d] = X[d * n + i];
+  std::vector<char> on_hull(n, 0);
+  for (const surface::Triangle& t : surface::convex_hull(p))
+    for (index_t v : t) on_hull[std::size_t(v)] = 1;
+  for (std::size_t i = 0; i < n; ++i) H[i] = on_hull[i] ? -H[i] : H[i];
+  return H;
+}
+
 std::vector<CurvatureBand> curvature_by_angle(const std::vector<double>& X, const std::vector<double>& H,
                                               const std::array<double, 3>& c, int bands) {
   const std::size_t n = H.size();

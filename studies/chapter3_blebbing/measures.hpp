@@ -13,6 +13,11 @@ namespace rbfib::blebbing {
 /// per crossed edge of each crossed triangle (cm).
 std::vector<std::array<double, 2>> section_x(const std::vector<double>& X, const std::vector<surface::Triangle>& tris, double x0);
 
+/// Fig. 15's LDSM curvature as the paper signs it: the edges' unsigned |H| (surface::
+/// edge_mean_curvature) made negative at the vertices of the convex hull of X (the convex part;
+/// the library's sign, -1/r on a sphere) and positive elsewhere (the concave part).
+std::vector<double> ldsm_signed_curvature(const std::vector<double>& X, const std::vector<surface::Triangle>& tris);
+
 /// Fig. 15: H (1/cm) in bands of the polar angle about +z through `center` (cm): per band its
 /// angle (degrees, the band's middle) and the mean, least and largest H of its sites.
 struct CurvatureBand {

@@ -3,6 +3,7 @@
 #include "rbfib/core/error.hpp"
 #include "rbfib/surface/geometry_kernels.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -19,12 +20,15 @@ double orient(const double* a, const double* b, const double* c, const double* q
 std::uint64_t key(index_t a, index_t b) { return (std::uint64_t(a) << 32) | std::uint64_t(b); }
 }  // namespace
 
-std::vector<Triangle> sphere_triangulation(const SphereSites& sites) {
-  const index_t n = sites.size();
-  require(n >= 4, "triangulation sites", n, "need at least 4 sites");
-  require_distinct(sites, "triangulation sites");
-  const std::vector<double> p = unit_sphere_points(sites);
+std::vector<Triangle> convex_hull(const std::vector<double>& p, double length) {
+  const index_t n = index_t(p.size() / 3);
+  require(p.size() % 3 == 0 && n >= 4, "convex hull points", n, "need at least 4 points (x y z each)");
   auto P = [&](index_t i) { return &p[3 * i]; };
+  const double scale = length > 0 ? length : [&] {
+    double m = 0;
+    for (double x : p) m = std::max(m, std::abs(x));
+    return m > 0 ? m : 1.0;
+  }();
 
   // Initial tetrahedron: site 0, the farthest from it, the farthest from that line, the farthest
   // from that plane.
@@ -50,8 +54,8 @@ std::vector<Triangle> sphere_triangulation(const SphereSites& sites) {
     const double d = std::abs(orient(P(i0), P(i1), P(i2), P(i)));
     if (d > best) { best = d; i3 = i; }
   }
-  if (!(best > 1e-14))
-    throw NumericalError(Cause::degenerate_site, "sphere triangulation: the sites are coplanar (no initial tetrahedron)");
+  if (!(best > 1e-14 * scale * scale * scale))
+    throw NumericalError(Cause::degenerate_site, "convex hull: the points are coplanar (no initial tetrahedron)");
 
   std::vector<Triangle> faces;
   std::vector<char> alive;
@@ -70,15 +74,14 @@ std::vector<Triangle> sphere_triangulation(const SphereSites& sites) {
   add_face(i1, i3, i2);
   add_face(i2, i3, i0);
 
-  const double eps = 1e-13;
+  const double eps = 1e-13 * scale * scale * scale;
   std::vector<index_t> visible;
   for (index_t q = 0; q < n; ++q) {
     if (q == i0 || q == i1 || q == i2 || q == i3) continue;
     visible.clear();
     for (index_t f = 0; f < static_cast<index_t>(faces.size()); ++f)
       if (alive[f] && orient(P(faces[f][0]), P(faces[f][1]), P(faces[f][2]), P(q)) > eps) visible.push_back(f);
-    if (visible.empty())
-      throw NumericalError(Cause::degenerate_site, "sphere triangulation: site " + to_text(q) + " lies inside the hull (not on the sphere?)");
+    if (visible.empty()) continue;  // inside the hull so far, hence inside the final hull
     for (index_t f : visible) alive[f] = 2;  // mark
     std::vector<std::pair<index_t, index_t>> horizon;
     for (index_t f : visible)
@@ -97,12 +100,19 @@ std::vector<Triangle> sphere_triangulation(const SphereSites& sites) {
     for (auto [a, b] : horizon) add_face(a, b, q);
   }
   std::vector<Triangle> out;
-  std::vector<int> used(n, 0);
   for (std::size_t f = 0; f < faces.size(); ++f)
-    if (alive[f]) {
-      out.push_back(faces[f]);
-      for (index_t v : faces[f]) used[v] = 1;
-    }
+    if (alive[f]) out.push_back(faces[f]);
+  return out;
+}
+
+std::vector<Triangle> sphere_triangulation(const SphereSites& sites) {
+  const index_t n = sites.size();
+  require(n >= 4, "triangulation sites", n, "need at least 4 sites");
+  require_distinct(sites, "triangulation sites");
+  const std::vector<Triangle> out = convex_hull(unit_sphere_points(sites), 1.0);
+  std::vector<int> used(n, 0);
+  for (const Triangle& t : out)
+    for (index_t v : t) used[v] = 1;
   for (index_t i = 0; i < n; ++i)
     if (!used[i])
       throw NumericalError(Cause::degenerate_site, "sphere triangulation: site " + to_text(i) + " is not a vertex of the hull");
@@ -134,6 +144,45 @@ PolyhedronMeasures polyhedron_measures(const std::vector<Triangle>& tris, const 
   }
   for (int k = 0; k < 3; ++k) out.centroid[k] = m[k] / out.volume;
   return out;
+}
+
+std::vector<double> edge_mean_curvature(const std::vector<Triangle>& tris, const std::vector<double>& X) {
+  const std::size_t n = X.size() / 3;
+  auto at = [&](index_t v, double* x) {
+    for (int k = 0; k < 3; ++k) x[k] = X[k * n + std::size_t(v)];
+  };
+  std::vector<std::array<double, 3>> normal(tris.size());  // unit normals
+  std::vector<double> A(n, 0.0), sum(n, 0.0);
+  std::unordered_map<std::uint64_t, index_t> edge_face;  // directed edge (a, b) -> its face
+  for (std::size_t f = 0; f < tris.size(); ++f) {
+    double a[3], b[3], c[3], e1[3], e2[3], nn[3];
+    at(tris[f][0], a), at(tris[f][1], b), at(tris[f][2], c);
+    for (int k = 0; k < 3; ++k) e1[k] = b[k] - a[k], e2[k] = c[k] - a[k];
+    cross3(e1, e2, nn);
+    const double twice = std::sqrt(dot3(nn, nn));
+    require(twice > 0, "edge_mean_curvature: triangle " + to_text(f) + " area", twice, "must be > 0");
+    for (int k = 0; k < 3; ++k) normal[f][k] = nn[k] / twice;
+    for (index_t v : tris[f]) A[std::size_t(v)] += twice / 6;  // a third of the area
+    for (int e = 0; e < 3; ++e) edge_face[key(tris[f][e], tris[f][(e + 1) % 3])] = index_t(f);
+  }
+  for (std::size_t f = 0; f < tris.size(); ++f)
+    for (int e = 0; e < 3; ++e) {
+      const index_t a = tris[f][e], b = tris[f][(e + 1) % 3];
+      if (a > b) continue;  // each edge once, from the face where it runs a -> b with a < b
+      const auto other = edge_face.find(key(b, a));
+      require(other != edge_face.end(), "edge_mean_curvature: edge " + to_text(a) + "-" + to_text(b), "open",
+              "the surface must be closed");
+      const std::array<double, 3>& n1 = normal[f];
+      const std::array<double, 3>& n2 = normal[std::size_t(other->second)];
+      const double theta = std::acos(std::clamp(n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2], -1.0, 1.0));
+      double xa[3], xb[3];
+      at(a, xa), at(b, xb);
+      const double len = std::sqrt((xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) + (xa[2] - xb[2]) * (xa[2] - xb[2]));
+      sum[std::size_t(a)] += theta * len;
+      sum[std::size_t(b)] += theta * len;
+    }
+  for (std::size_t i = 0; i < n; ++i) sum[i] /= 4 * A[i];
+  return sum;
 }
 
 }  // namespace rbfib::surface
