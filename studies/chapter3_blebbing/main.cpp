@@ -99,7 +99,8 @@ class Runs {
     m.method = c.method;
     m.M = c.M;
     const std::string path = opt_.out_dir + "/run_" + c.label + ".h5";
-    Run r(m, eval_, opt_.keeps_runs() ? path : std::string(), std::max(0.0, sitting_.remaining()));
+    Run r(m, eval_, opt_.keeps_runs() ? path : std::string(), std::max(0.0, sitting_.remaining()),
+          [&](const std::string& line) { st::log(opt_, c.label + ": " + line); });
     if (r.continued()) st::log(opt_, c.label + ": resumed from " + path + " at step " + to_text(r.step()));
     r.advance();
     st::RunProgress p{r.done(), r.step() * m.dt, m.steps() * m.dt, r.step(), r.seconds_per_step(), r.failure()};

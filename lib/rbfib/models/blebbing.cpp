@@ -39,7 +39,8 @@ struct Run::Impl {
   std::vector<View> kept_views;
   double seconds = 0;
 
-  Impl(const Model& model, const chapter3::EvaluationSet& e, const std::string& checkpoint, double sitting)
+  Impl(const Model& model, const chapter3::EvaluationSet& e, const std::string& checkpoint, double sitting,
+       std::function<void(const std::string&)> progress)
       : m(model), eval(e) {
     require(m.eta >= 8, "grid size eta", m.eta, "must be >= 8");
     require(m.mu > 0, "viscosity mu (P)", m.mu, "must be > 0");
@@ -82,6 +83,7 @@ struct Run::Impl {
     hooks.after_step = [this](const sim::ImmersedBoundary& ib, const sim::IbStepReport* r, run::SeriesSet& s) {
       after_step(ib, r, s);
     };
+    if (progress) hooks.progress = [progress](const run::Progress& p) { progress(p.describe()); };
     loop.emplace(describe(), std::move(ib), ro, std::move(hooks));
     bleb_if_due(loop->ib().step_count());  // a continued run past equilibration
     collect();
@@ -233,8 +235,9 @@ struct Run::Impl {
   }
 };
 
-Run::Run(const Model& model, const chapter3::EvaluationSet& eval, const std::string& checkpoint, double sitting)
-    : impl_(std::make_unique<Impl>(model, eval, checkpoint, sitting)) {}
+Run::Run(const Model& model, const chapter3::EvaluationSet& eval, const std::string& checkpoint, double sitting,
+         std::function<void(const std::string&)> progress)
+    : impl_(std::make_unique<Impl>(model, eval, checkpoint, sitting, std::move(progress))) {}
 Run::~Run() = default;
 
 bool Run::advance() {

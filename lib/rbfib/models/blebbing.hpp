@@ -28,6 +28,7 @@
 #include "rbfib/surface/triangulation.hpp"
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -86,8 +87,9 @@ class Run {
   /// `eval`: the n sites of the membrane and the cortex (a Bauer spiral with its triangulation).
   /// With a checkpoint path the run continues from that checkpoint when it holds this setup;
   /// `sitting` bounds one advance() in wall seconds.
+  /// `progress` receives a line on the run's progress every 30 s of wall time and at the sitting's end.
   Run(const Model& model, const chapter3::EvaluationSet& eval, const std::string& checkpoint = "",
-      double sitting = INFINITY);
+      double sitting = INFINITY, std::function<void(const std::string&)> progress = {});
   ~Run();
   /// Steps to the run's end or the sitting's; a NumericalError ends the run (failure()). Returns
   /// true when the run is over.

@@ -46,14 +46,16 @@ double Progress::hours_to_go() const {
 }
 
 std::string Progress::describe() const {
-  // The time unit that suits the run's end.
+  // The time units that suit the run's end and its step.
   const double unit = t_end >= 1e-3 ? units::ms : units::us;
   const char* name = t_end >= 1e-3 ? "ms" : "us";
   char line[320];
   const double rate = sitting_seconds > 0 ? double(sitting_steps) / sitting_seconds : NAN;
   const double t = clock.t, mean_dt = clock.step > 0 ? t / double(clock.step) : clock.dt;
-  std::snprintf(line, sizeof line, "t = %.4g of %.4g %s (%.1f%%), step %ld, %.3g steps/s, mean dt %.4g ns", t / unit, t_end / unit, name,
-                t_end > 0 ? 100 * t / t_end : 0.0, clock.step, rate, mean_dt / units::ns);
+  const bool long_step = mean_dt >= 1e-5;  // 10 us and above in us, below in ns
+  std::snprintf(line, sizeof line, "t = %.4g of %.4g %s (%.1f%%), step %ld, %.3g steps/s, mean dt %.4g %s", t / unit, t_end / unit, name,
+                t_end > 0 ? 100 * t / t_end : 0.0, clock.step, rate, mean_dt / (long_step ? units::us : units::ns),
+                long_step ? "us" : "ns");
   std::string s = line;
   if (status == RunStatus::stopped) return s + ", stopped (" + to_string(*stop_cause) + "): " + stop_message;
   if (status == RunStatus::finished) return s + ", finished";
