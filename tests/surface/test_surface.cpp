@@ -520,3 +520,58 @@ TEST(Interpolation, RowRangesOfTheOperatorsEqualTheirRows) {
     EXPECT_THROW(apply_operators_rows(*ops, Fd.view(), ns - 2, 5, linalg::MatrixView{}, linalg::MatrixView{}, work), InputError);
   }
 }
+
+TEST(Interpolation, PartialProductsEqualTheFullProductWhereWritten) {
+  // apply_operators_part(rows, narrow) writes every site for the first `narrow` columns and the
+  // sites [0, rows) for the rest; those entries equal apply_operators' to the bound on two orders
+  // of a k-term sum (as above), and the entries it must not write keep what they held.
+  const SphereSites data = bauer_spiral(64), sample = bauer_spiral(150);
+  const MaxDetResult md = max_determinant_points(5);
+  for (const auto& ops : {rbf_operators(data, sample, PhsBasis{7, 3}), sh_operators(md.sites, sample, 5)}) {
+    const index_t nd = ops->n_data(), ns = ops->n_sample(), cols = 6, rows = 97, narrow = 3;
+    std::vector<double> F(static_cast<std::size_t>(nd * cols));
+    for (std::size_t k = 0; k < F.size(); ++k) F[k] = std::cos(0.3 * double(k)) + 0.2 * double(k % 7);
+    const linalg::DeviceMatrix Fd = linalg::DeviceMatrix::from_host(nd, cols, F.data());
+    OperatorWorkspace work;
+    const double sentinel = 12345.0;
+    const std::vector<double> fill_v(static_cast<std::size_t>(ns * cols), sentinel), fill_d(static_cast<std::size_t>(5 * ns * cols), sentinel);
+    linalg::DeviceMatrix V(ns, cols), D(5 * ns, cols);
+    linalg::DeviceMatrix v = linalg::DeviceMatrix::from_host(ns, cols, fill_v.data());
+    linalg::DeviceMatrix d = linalg::DeviceMatrix::from_host(5 * ns, cols, fill_d.data());
+    apply_operators(*ops, Fd.view(), V.view(), D.view(), work);
+    apply_operators_part(*ops, Fd.view(), rows, narrow, v.view(), d.view(), work);
+    const auto Vh = V.to_host(), Dh = D.to_host(), vh = v.to_host(), dh = d.to_host();
+    const index_t k = ops->value.cols();
+    const std::vector<double> Mv = ops->value.to_host(), Md = ops->derivatives.to_host();
+    const std::vector<double> C = ops->factored() ? work.coefficients.to_host() : F;
+    const double g = 2 * (k + 2) * eps / 2 / (1 - (k + 2) * eps / 2);  // 2 gamma_{k+2}
+    auto tol = [&](const std::vector<double>& M, index_t ld, index_t row, index_t c) {
+      double s = 0;
+      for (index_t j = 0; j < k; ++j) s += std::abs(M[row + j * ld]) * std::abs(C[j + c * nd]);
+      return g * s;
+    };
+    int written = 0, kept = 0;
+    for (index_t c = 0; c < cols; ++c)
+      for (index_t i = 0; i < ns; ++i) {
+        const bool write = i < rows || c < narrow;
+        if (write) {
+          ++written;
+          EXPECT_NEAR(vh[i + c * ns], Vh[i + c * ns], tol(Mv, ns, i, c));
+        } else {
+          ++kept;
+          EXPECT_EQ(vh[i + c * ns], sentinel);
+        }
+        for (int q = 0; q < 5; ++q) {
+          const index_t r = q * ns + i;
+          if (write)
+            EXPECT_NEAR(dh[r + c * 5 * ns], Dh[r + c * 5 * ns], tol(Md, 5 * ns, r, c));
+          else
+            EXPECT_EQ(dh[r + c * 5 * ns], sentinel);
+        }
+      }
+    EXPECT_EQ(written, rows * cols + (ns - rows) * narrow);
+    EXPECT_EQ(kept, (ns - rows) * (cols - narrow));
+    EXPECT_THROW(apply_operators_part(*ops, Fd.view(), ns + 1, narrow, v.view(), d.view(), work), InputError);
+    EXPECT_THROW(apply_operators_part(*ops, Fd.view(), rows, cols + 1, v.view(), d.view(), work), InputError);
+  }
+}

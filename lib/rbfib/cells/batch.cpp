@@ -175,13 +175,18 @@ void compute_forces(const Batch& batch, linalg::ConstMatrixView state, CellForce
     t0 = std::chrono::steady_clock::now();
   }
 
-  // 1. Jets: value and derivatives of X (and U) at the sample sites, and with bending at the data
-  //    sites too (rows n_s .. of the type's operators): two products.
+  // 1. Jets: value and derivatives of X (and U) at the sample sites, and with bending those of X at
+  //    the data sites too (rows n_s .. of the type's operators; U's jets there are not used): two
+  //    products, or four with both (the data sites' rows applied to X alone).
   const index_t nj = type.jet_sites();
   const index_t ldd = surface::derivative_count * nj;
   w.values.resize(nj, cols);
   w.derivatives.resize(ldd, cols);
-  surface::apply_operators(type.operators(), state.block(0, 0, nd, cols), w.values.view(), w.derivatives.view(), w.ops);
+  if (bending && dissipation)
+    surface::apply_operators_part(type.operators(), state.block(0, 0, nd, cols), ns, 3 * N, w.values.view(),
+                                  w.derivatives.view(), w.ops);
+  else
+    surface::apply_operators(type.operators(), state.block(0, 0, nd, cols), w.values.view(), w.derivatives.view(), w.ops);
   out.positions.resize(ns, 3 * N);
   linalg::copy(w.values.view().block(0, 0, ns, 3 * N), out.positions.view());
   const double* V = ptr(w.values.storage());

@@ -165,7 +165,8 @@ ProductFlops product_flops(const CellTypeSpec& spec, index_t N) {
   const double nj = ns + (spec.model.bending() ? nd : 0.0);  // the operators' rows (CellType::jet_sites)
   ProductFlops f;
   const double cols = (spec.model.dissipation() ? 6.0 : 3.0) * double(N);
-  f.jets = 2.0 * 6.0 * nj * nd * cols;
+  // the sample sites' rows on X (and U); the data sites' rows (bending) on X alone
+  f.jets = 2.0 * 6.0 * ns * nd * cols + 2.0 * 6.0 * (nj - ns) * nd * 3.0 * double(N);
   f.bytes = 8.0 * 6.0 * nj * nd;
   if (spec.model.bending()) {
     f.bending = 2.0 * 5.0 * ns * nd * double(N);
