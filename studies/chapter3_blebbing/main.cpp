@@ -14,7 +14,9 @@
 //            the interpolant's; LDSM: from the edges, signed by the convex hull, as the paper does);
 //   also     the boundary speed at the end of equilibration (the paper: about 0.01 um/s after
 //            0.2 s), the time per step and to solution of each run beside the paper's 10 h (SHVD)
-//            against 1 h (LDSM).
+//            against 1 h (LDSM);
+//   and      the equilibration's decay with every link attached, on our sites and on a Bauer spiral
+//            of the paper's n, to the time the membrane's speed reaches the paper's 0.01 um/s.
 //
 // Scales. Full: the paper's box (30 um, eta = 32), n = 4,624 sites (the stored maximal-determinant
 // set of degree 67; the paper's 4,761 is degree 68, not stored), m = 625, 1,024, 4,624, 0.2 s of
@@ -174,6 +176,36 @@ class Runs {
     st::log(opt_, label.str() + ": " + status);
   }
 
+  /// The equilibration's decay: LDSM with every link attached for `T` s on the sites `sites`
+  /// (labelled `family`), the membrane speed (largest and RMS over the sites) every 0.05 s; rows of
+  /// `decay_rows`. Returns the first times the largest and the RMS speed reach `target` (cm/s; NaN:
+  /// not within T or the run unfinished).
+  std::pair<double, double> decay(const std::string& family, const chapter3::EvaluationSet& sites, double T, double target) {
+    Model m = base_;
+    m.method = chapter3::Method::ldsm;
+    m.t_equilibrate = T;
+    m.t_bleb = 0;  // no links are removed within the run
+    m.record_every = std::max(1, int(std::lround(0.05 / m.dt)));
+    m.view_every = int(m.steps());
+    const std::string label = "decay_LDSM_" + family;
+    Run r(m, sites, opt_.keeps_runs() ? opt_.out_dir + "/run_" + label + ".h5" : std::string(), std::max(0.0, sitting_.remaining()),
+          [&](const std::string& line) { st::log(opt_, label + ": " + line); });
+    r.advance();
+    st::RunProgress p{r.done(), r.step() * m.dt, m.steps() * m.dt, r.step(), r.seconds_per_step(), r.failure()};
+    st::record_run(results_, label, p);
+    double t_max = NAN, t_rms = NAN;
+    for (const Sample& q : r.series()) {
+      if (q.t <= 0 || q.t > T + 1e-9) continue;
+      decay_rows["rows"].push(row({label, double(sites.size()), q.t, q.boundary_speed / um, q.boundary_speed_rms / um}));
+      if (std::isnan(t_max) && q.boundary_speed <= target) t_max = q.t;
+      if (std::isnan(t_rms) && q.boundary_speed_rms <= target) t_rms = q.t;
+    }
+    if (!r.done() || !r.failure().empty()) t_max = t_rms = NAN;
+    st::log(opt_, label + ": " + (r.done() ? (r.failure().empty() ? "finished" : "stopped: " + r.failure()) : "partial") +
+                      ", largest speed at or below " + to_text(target / um) + " um/s from t = " + to_text(t_max) + " s");
+    return {t_max, t_rms};
+  }
+
   /// The largest step of the scan that finished with the bleb size within 1% of the smallest
   /// step's (NaN before the scan has finished).
   double largest_stable_dt() const {
@@ -184,6 +216,7 @@ class Runs {
   }
 
   st::Json runs, series, equilibration, sections, curvature;
+  st::Json decay_rows = st::table({"run", "n", "t", "boundary_speed_max_um_s", "boundary_speed_rms_um_s"}, {"", "", "s", "um/s", "um/s"});
   st::Json scan_rows = st::table({"run", "dt", "status", "steps_done", "steps_needed", "bleb_size_um", "volume_change_percent",
                                   "boundary_speed_equilibrated_um_s", "link_max_um", "seconds_per_step"},
                                  {"", "s", "", "", "", "um", "%", "um/s", "um", "s"});
@@ -255,6 +288,15 @@ int main(int argc, char** argv) {
     Runs runs(opt, results, base, eval);
     for (double dt : {1e-4, 2e-4, 4e-4, 8e-4, 1.6e-3}) runs.scan(dt, 0.1);
 
+    // ---- 2b. The equilibration's decay (the paper: about 0.01 um/s after 0.2 s): LDSM with every
+    // link attached, on our sites and on a Bauer spiral of the paper's n (full: 4,761), to the time
+    // the membrane's speed reaches 0.01 um/s.
+    const double T_decay = full ? 2.0 : 0.5, target = 0.01 * um;
+    const index_t n_spiral = full ? 4761 : n;
+    const chapter3::EvaluationSet spiral = chapter3::make_evaluation_set(n_spiral);
+    const auto [md_max, md_rms] = runs.decay("MD" + to_text(n), eval, T_decay, target);
+    const auto [sp_max, sp_rms] = runs.decay("spiral" + to_text(n_spiral), spiral, T_decay, target);
+
     // ---- 3. The runs ------------------------------------------------------------------------------
     std::vector<Case> all = cases(full);
     std::vector<Outcome> out;
@@ -279,6 +321,10 @@ int main(int argc, char** argv) {
     V["volume_change_spread_over_gap_to_m_low"] = number(spread / gap);
     V["boundary_speed_equilibrated_ldsm_um_s"] = number(ldsm.speed_equilibrated);
     V["boundary_speed_rms_equilibrated_ldsm_um_s"] = number(ldsm.speed_rms_equilibrated);
+    V["equilibration_time_to_0p01_um_s_md_s"] = number(md_max);
+    V["equilibration_time_to_0p01_um_s_md_rms_s"] = number(md_rms);
+    V["equilibration_time_to_0p01_um_s_spiral_s"] = number(sp_max);
+    V["equilibration_time_to_0p01_um_s_spiral_rms_s"] = number(sp_rms);
     V["cost_ratio_shvd_m_n_over_ldsm"] = number(all_m.per_step / ldsm.per_step);
     V["dt_largest_stable_s"] = number(runs.largest_stable_dt());
     V["cost_ratio_paper"] = 10.0;  // Sec. 6: about 10 hours with SHVD against about 1 hour with LDSM
@@ -299,6 +345,7 @@ int main(int argc, char** argv) {
     T["curvature"] = runs.curvature;
     T["cost"] = cost;
     T["dt_scan"] = runs.scan_rows;
+    T["equilibration_decay"] = runs.decay_rows;
     st::write_results(opt, results);
     return 0;
   });
