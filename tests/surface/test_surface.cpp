@@ -475,6 +475,26 @@ TEST(Quadrature, ReferenceShapeWeightsIntegrateTheRedCellArea) {
   EXPECT_LT(A_ref, 1.5e-6);
 }
 
+/// The bound on two orders of the k-term sums of one operator row times the columns C that
+/// apply_operators multiplies (F, or Y^{-1} F by the LU solve): 2 gamma_{k+2} sum_j |M_ij| |C_jc|.
+/// Products of other shapes may be blocked and summed differently by BLAS.
+struct SumOrderBound {
+  const SurfaceOperators& ops;
+  std::vector<double> Mv, Md, C;
+  index_t k, nd;
+  double g;
+  SumOrderBound(const SurfaceOperators& o, const OperatorWorkspace& work, const std::vector<double>& F)
+      : ops(o), Mv(o.value.to_host()), Md(o.derivatives.to_host()), C(o.factored() ? work.coefficients.to_host() : F),
+        k(o.value.cols()), nd(o.n_data()), g(2 * (k + 2) * eps / 2 / (1 - (k + 2) * eps / 2)) {}
+  double at(const std::vector<double>& M, index_t ld, index_t row, index_t c) const {
+    double s = 0;
+    for (index_t j = 0; j < k; ++j) s += std::abs(M[row + j * ld]) * std::abs(C[j + c * nd]);
+    return g * s;
+  }
+  double value(index_t site, index_t c) const { return at(Mv, ops.n_sample(), site, c); }
+  double derivative(index_t row, index_t c) const { return at(Md, 5 * ops.n_sample(), row, c); }
+};
+
 TEST(Interpolation, RowRangesOfTheOperatorsEqualTheirRows) {
   // apply_operators_rows on [row0, row0 + rows) equals those rows of apply_operators (one product
   // for the values, a strided batch of five for the derivatives), for an assembled RBF set and a
@@ -493,26 +513,16 @@ TEST(Interpolation, RowRangesOfTheOperatorsEqualTheirRows) {
     const auto sel = select_sample_sites(*ops, row0, rows);
     apply_operators(*sel, Fd.view(), v2.view(), d2.view(), work);
     const auto Vh = V.to_host(), Dh = D.to_host(), vh = v.to_host(), dh = d.to_host(), v2h = v2.to_host(), d2h = d2.to_host();
-    // The three calls multiply the same operator rows by the same columns C (F, or Y^{-1} F by the
-    // same LU solve) in products of other shapes, which BLAS may block and sum differently: any two
-    // orders of a k-term sum differ by at most 2 gamma_{k+2} sum_j |M_ij| |C_jc| (k = columns of M;
-    // the former fixed 1e-13 max|D| was not tied to these sums).
-    const index_t k = ops->value.cols();
-    const std::vector<double> Mv = ops->value.to_host(), Md = ops->derivatives.to_host();
-    const std::vector<double> C = ops->factored() ? work.coefficients.to_host() : F;
-    const double g = 2 * (k + 2) * eps / 2 / (1 - (k + 2) * eps / 2);  // 2 gamma_{k+2}
-    auto tol = [&](const std::vector<double>& M, index_t ld, index_t row, index_t c) {
-      double s = 0;
-      for (index_t j = 0; j < k; ++j) s += std::abs(M[row + j * ld]) * std::abs(C[j + c * nd]);
-      return g * s;
-    };
+    // The three calls multiply the same operator rows by the same columns in products of other
+    // shapes (the former fixed 1e-13 max|D| was not tied to the sums).
+    const SumOrderBound tol(*ops, work, F);
     for (index_t c = 0; c < cols; ++c)
       for (index_t i = 0; i < rows; ++i) {
-        const double tv = tol(Mv, ns, row0 + i, c);
+        const double tv = tol.value(row0 + i, c);
         EXPECT_NEAR(vh[i + c * rows], Vh[row0 + i + c * ns], tv);
         EXPECT_NEAR(v2h[i + c * rows], Vh[row0 + i + c * ns], tv);
         for (int q = 0; q < 5; ++q) {
-          const double td = tol(Md, 5 * ns, q * ns + row0 + i, c);
+          const double td = tol.derivative(q * ns + row0 + i, c);
           EXPECT_NEAR(dh[q * rows + i + c * 5 * rows], Dh[q * ns + row0 + i + c * 5 * ns], td);
           EXPECT_NEAR(d2h[q * rows + i + c * 5 * rows], Dh[q * ns + row0 + i + c * 5 * ns], td);
         }
@@ -541,22 +551,14 @@ TEST(Interpolation, PartialProductsEqualTheFullProductWhereWritten) {
     apply_operators(*ops, Fd.view(), V.view(), D.view(), work);
     apply_operators_part(*ops, Fd.view(), rows, narrow, v.view(), d.view(), work);
     const auto Vh = V.to_host(), Dh = D.to_host(), vh = v.to_host(), dh = d.to_host();
-    const index_t k = ops->value.cols();
-    const std::vector<double> Mv = ops->value.to_host(), Md = ops->derivatives.to_host();
-    const std::vector<double> C = ops->factored() ? work.coefficients.to_host() : F;
-    const double g = 2 * (k + 2) * eps / 2 / (1 - (k + 2) * eps / 2);  // 2 gamma_{k+2}
-    auto tol = [&](const std::vector<double>& M, index_t ld, index_t row, index_t c) {
-      double s = 0;
-      for (index_t j = 0; j < k; ++j) s += std::abs(M[row + j * ld]) * std::abs(C[j + c * nd]);
-      return g * s;
-    };
+    const SumOrderBound tol(*ops, work, F);
     int written = 0, kept = 0;
     for (index_t c = 0; c < cols; ++c)
       for (index_t i = 0; i < ns; ++i) {
         const bool write = i < rows || c < narrow;
         if (write) {
           ++written;
-          EXPECT_NEAR(vh[i + c * ns], Vh[i + c * ns], tol(Mv, ns, i, c));
+          EXPECT_NEAR(vh[i + c * ns], Vh[i + c * ns], tol.value(i, c));
         } else {
           ++kept;
           EXPECT_EQ(vh[i + c * ns], sentinel);
@@ -564,7 +566,7 @@ TEST(Interpolation, PartialProductsEqualTheFullProductWhereWritten) {
         for (int q = 0; q < 5; ++q) {
           const index_t r = q * ns + i;
           if (write)
-            EXPECT_NEAR(dh[r + c * 5 * ns], Dh[r + c * 5 * ns], tol(Md, 5 * ns, r, c));
+            EXPECT_NEAR(dh[r + c * 5 * ns], Dh[r + c * 5 * ns], tol.derivative(r, c));
           else
             EXPECT_EQ(dh[r + c * 5 * ns], sentinel);
         }
