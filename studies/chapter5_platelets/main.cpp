@@ -6,11 +6,16 @@
 // curvature, Sec. 2.2) lying flat, 0.3 um and 0.5 um above it (gaps between surfaces: the platelet
 // is 1 um thick); B3 kernel, backward-forward Euler; plasma of 1 cP (the seed's code; at the 0.1 cP
 // of Sec. 2.1 this endothelium is unstable at 50 ns, reference/chapter4_cells.yaml).
-//   full:  h = 0.2 um, 900 / 900 sites, 16,000 endothelium points, dt = 50 ns (the seed's), to
-//          100 ms (a wobble at the seed's 10/s), continued from checkpoints;
+// Three walls: the seed's tethers at its fixed step, the grid's own wall, and tethers whose k and
+// eta follow the step by the seed's rule (the checks' run); the last two on the seed's ladder. The
+// seed's tethers hold the step at 50 ns (61 hours to 100 ms here), so they and the grid wall run
+// over an A/B window (table wall_ab) and the rule's run goes to the end.
+//   full:  h = 0.2 um, 900 / 900 sites, 16,000 endothelium points, dt = 50 ns (the seed's; the
+//          ladder's lowest rung), to 100 ms (a wobble at the seed's 10/s), the A/B window 2 ms,
+//          continued from checkpoints;
 //   quick: h = 0.4 um, 400 / 400 sites, 64 x 64 endothelium points (the same spacing in h), dt =
 //          100 ns (the springs' explicit limit here is about 160 ns: 200 ns blows up in 3 steps),
-//          to 0.3 ms: the onset of the motion, not a period.
+//          every run to 0.3 ms: the onset of the motion, not a period.
 // Measured per platelet every few steps: the gap (the lowest data site above the endothelium's
 // plane), the tilt of its short axis from the wall normal in the shear plane (the sense of the
 // shear positive; edge-on, the edge pointing at the wall, within 45 degrees of 90), the centre's
@@ -56,13 +61,14 @@ struct Setup {
   int sites = 0;                 // data = sample sites per platelet
   int endothelium = 0;           // points per side of the lattice
   double dt = 0, t_end = 0;      // s (dt: the fixed step, or with the ladder its lowest rung)
+  double t_ab = 0;               // s, the window of the seed's tethers at its fixed step (the A/B)
 };
 
 double wall_plane(Wall w) { return w == Wall::grid ? 0.0 : 1 * units::um; }
 
 /// The two platelets over the flat wall (Sec. 5.2) as a scene, the flow started as the shear; with
 /// the grid wall or the rule the step climbs the seed's ladder (2^k dt, k = 0..4, by eq. 5.4).
-scene::Scene platelets_scene(const Setup& s, Wall w) {
+scene::Scene platelets_scene(const Setup& s, Wall w, double t_end) {
   scene::Scene sc;
   sc.name = "chapter5_platelets";
   sc.grid = make_mac_grid(3, {s.cells_x, s.cells_y, s.cells_x}, {16 * units::um, 12 * units::um, 16 * units::um},
@@ -72,7 +78,7 @@ scene::Scene platelets_scene(const Setup& s, Wall w) {
   sc.fluid = {1, 1 * units::cP};  // g/cm^3, P
   sc.fluid_options.integrator = TimeIntegrator::backward_forward_euler;
   sc.fluid_options.dt = s.dt;
-  sc.t_end = s.t_end;
+  sc.t_end = t_end;
   if (w != Wall::tethers) sc.ib.adaptive = {true, s.dt, 4, 16, INFINITY};
   sc.ib.kernel = ib::Kernel::bspline3;
   sc.types.push_back(scene::cell_type("platelet", "platelet", s.sites, s.sites));
@@ -108,13 +114,26 @@ std::vector<double> sample(const sim::ImmersedBoundary& ib, double wall_y) {
   return row;
 }
 
-/// One wall's run and its tables (the seed's tethers: the checks' run, whose values carry no suffix).
+/// One wall's run and its tables. Every run's values carry its `key`; the checks' run's values are
+/// also written without it.
 struct WallRun {
   Wall wall;
-  std::string suffix, label;  // of its run's id, tables and values; its row of wall_treatments
-  double share;               // its part of what is left of the sitting: 1 / share
+  std::string suffix, key, label;  // of its run's id and tables; of its values; its row of wall_treatments
+  double share;                    // its part of what is left of the sitting: 1 / share
+  bool checks;                     // the run every check measures
+  double t_end;                    // s
   Json series, summary;
+  // At the A/B window's end (NaN before the run has reached it): each platelet's tilt (rad) and
+  // gap (cm), the wall's largest displacement up to then (cm).
+  double tilt_ab[2] = {NAN, NAN}, gap_ab[2] = {NAN, NAN}, displacement_ab = NAN;
 };
+
+/// Linear interpolation of y(t) at `at` (NaN outside the samples).
+double value_at(const std::vector<double>& t, const std::vector<double>& y, double at) {
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if (t[i] >= at * (1 - 1e-9)) return y[i - 1] + (y[i] - y[i - 1]) * std::clamp((at - t[i - 1]) / (t[i] - t[i - 1]), 0.0, 1.0);
+  return NAN;
+}
 
 /// Runs (or continues) one wall's scene; adds its rows to the tables and its values.
 void run_wall(WallRun& w, const Setup& s, const st::Sitting& sitting, const st::Options& opt, Json& results, Json& walls, Json& cost) {
@@ -123,9 +142,9 @@ void run_wall(WallRun& w, const Setup& s, const st::Sitting& sitting, const st::
   const std::string id = "platelets" + w.suffix;
   st::SceneRunHooks hooks;
   hooks.sample = [&w](const sim::ImmersedBoundary& ib, const sim::IbStepReport*) { return sample(ib, wall_plane(w.wall)); };
-  const std::string text = scene::to_yaml(platelets_scene(s, w.wall), w.wall == Wall::grid ? "chapter5_platelets: two platelets over the grid's flat wall (Sec. 5.2)"
+  const std::string text = scene::to_yaml(platelets_scene(s, w.wall, w.t_end), w.wall == Wall::grid ? "chapter5_platelets: two platelets over the grid's flat wall (Sec. 5.2)"
                                                                                             : "chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)");
-  const run::Cadence every = seed ? run::Cadence{std::max(1L, std::lround(s.t_end / s.dt) / 400)} : run::Cadence{0, s.t_end / 400};
+  const run::Cadence every = seed ? run::Cadence{std::max(1L, std::lround(w.t_end / s.dt) / 400)} : run::Cadence{0, w.t_end / 400};
   const st::SceneRun run = st::run_scene(text, id, every, opt.keeps_runs(), opt, hooks, sitting.remaining() / w.share);
   std::vector<double> t;
   double displacement = 0;  // the largest over the run; the slip at its end (at t = 0 it is the initial shear's, gdot x 1 um)
@@ -136,26 +155,34 @@ void run_wall(WallRun& w, const Setup& s, const st::Sitting& sitting, const st::
   Platelet p[2];
   for (int c = 0; c < 2; ++c) {
     p[c] = analyse(run.samples, t, c, gdot, w.series);
-    report(p[c], c, t.back() - t.front(), w.summary, seed ? V : ignored, opt);
+    report(p[c], c, t.back() - t.front(), w.summary, w.checks ? V : ignored, opt);
+    w.tilt_ab[c] = value_at(t, p[c].tilt, s.t_ab);
+    w.gap_ab[c] = value_at(t, p[c].gap, s.t_ab);
   }
-  V["endothelium_displacement_um" + w.suffix] = displacement / units::um;
-  V["completed" + w.suffix] = run.stopped.empty() ? 1.0 : 0.0;
-  st::record_run(results, id, run.progress(s.t_end));
+  if (t.back() >= s.t_ab * (1 - 1e-9)) {
+    w.displacement_ab = 0;
+    for (const auto& r : run.samples)
+      if (r[0] <= s.t_ab * (1 + 1e-9)) w.displacement_ab = std::max(w.displacement_ab, r[r.size() - 2]);
+  }
+  for (const std::string& k : w.checks ? std::vector<std::string>{w.key, ""} : std::vector<std::string>{w.key}) {
+    V["endothelium_displacement_um" + k] = displacement / units::um;
+    V["completed" + k] = run.stopped.empty() ? 1.0 : 0.0;
+  }
+  st::record_run(results, id, run.progress(w.t_end));
   // The cost: time per step and the time to the seed's 100 ms at the mean step so far.
   const double t_now = t.back(), mean_dt = run.steps > 0 ? t_now / double(run.steps) : s.dt, sps = run.seconds_per_step();
   const double steps_100 = std::round(100 * ms / mean_dt);
   cost["rows"].push(row({id, 16.0 / s.cells_x, mean_dt / us, double(run.steps), run.seconds, sps, steps_100, steps_100 * sps / 3600,
-                         (s.t_end - t_now) / mean_dt * sps / 3600}));
+                         (w.t_end - t_now) / mean_dt * sps / 3600}));
   walls["rows"].push(row({w.label, t_now / ms, mean_dt / us, s.dt * (seed ? 1 : 16) / us, double(run.steps), sps, steps_100 * sps / 3600,
                           displacement / units::um, slip / units::um, p[0].min_gap / units::um, p[1].min_gap / units::um, p[0].tilt.back() * 180 / pi,
                           p[1].tilt.back() * 180 / pi, p[0].tilt_rate / p[0].jeffery_rate, p[1].tilt_rate / p[1].jeffery_rate}));
-  if (!seed)
-    for (int c = 0; c < 2; ++c) {
-      const std::string k = (c == 0 ? "_near" : "_far") + w.suffix;
-      V["min_gap_um" + k] = p[c].min_gap / units::um;
-      V["rate_over_jeffery" + k] = p[c].tilt_rate / p[c].jeffery_rate;
-      V["volume_change" + k] = p[c].volume_change;
-    }
+  for (int c = 0; c < 2; ++c) {  // the checks' run writes these without its key too (report)
+    const std::string k = (c == 0 ? "_near" : "_far") + w.key;
+    V["min_gap_um" + k] = p[c].min_gap / units::um;
+    V["rate_over_jeffery" + k] = p[c].tilt_rate / p[c].jeffery_rate;
+    V["volume_change" + k] = p[c].volume_change;
+  }
 }
 
 }  // namespace
@@ -166,7 +193,7 @@ int main(int argc, char** argv) {
                                                    "Sec. 5.2: two platelets over a flat endothelium in shear 1000/s, wobbling and tumbling");
     const bool full = opt.scale == st::Scale::full;
     const double us = units::us, ms = units::ms;
-    const Setup s = full ? Setup{80, 60, 900, 128, 50 * units::ns, 100 * ms} : Setup{40, 30, 400, 64, 100 * units::ns, 0.3 * ms};
+    const Setup s = full ? Setup{80, 60, 900, 128, 50 * units::ns, 100 * ms, 2 * ms} : Setup{40, 30, 400, 64, 100 * units::ns, 0.3 * ms, 0.3 * ms};
     Json results = st::make_results(opt);
     Json& P = results["parameters"];
     P["box_um"] = "16 x 12 x 16, periodic x and z, walls in y, the top one at 12 mm/s along z (shear 1000/s)";
@@ -175,16 +202,19 @@ int main(int argc, char** argv) {
     P["platelet_sites"] = s.sites;
     P["endothelium"] = to_text(s.endothelium) + " x " + to_text(s.endothelium) + " tethered points at y = 1 um, k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm";
     P["gaps_um"] = Json::Array{Json(gaps_um[0]), Json(gaps_um[1])};
-    P["walls"] = "run platelets: the endothelium above (the seed's); run platelets_grid_wall: no endothelium, the grid's no-slip wall at y = 0 "
-                 "with the platelets at the same gaps above it and the top wall at 12 mm/s x 12/11 (the same shear above the wall, 1091/s); "
-                 "run platelets_tether_rule: the endothelium with k and eta following the step (the seed's rule at gain 0.5); "
-                 "the last two on the seed's ladder dt = 2^k x " + to_text(s.dt / us) + " us, k = 0..4, by eq. 5.4";
+    P["walls"] = "run platelets_tether_rule (the checks' run, to t_end): the endothelium with k and eta following the step (the seed's rule "
+                 "at gain 0.5); run platelets (to t_ab_ms): the seed's endothelium at its fixed step; run platelets_grid_wall (to t_ab_ms): no "
+                 "endothelium, the grid's no-slip wall at y = 0 with the platelets at the same gaps above it and the top wall at 12 mm/s x 12/11 "
+                 "(the same shear above the wall, 1091/s); the rule and the grid wall on the seed's ladder dt = 2^k x " + to_text(s.dt / us) +
+                 " us, k = 0..4, by eq. 5.4";
     P["dt_us"] = s.dt / us;
     P["t_end_ms"] = s.t_end / ms;
+    P["t_ab_ms"] = s.t_ab / ms;
     P["kernel_integrator_coupling"] = "B3 kernel, backward-forward Euler, the seed's coupling (a)-(g)";
 
-    // The seed's endothelium (the checks' run), the grid's wall and the tethers following the step
-    // (both on the ladder), side by side in the table wall_treatments.
+    // The seed's endothelium at its fixed step and the grid's wall over the A/B window, the tethers
+    // following the step (the checks' run) to the end; side by side in the tables wall_treatments
+    // and wall_ab.
     const Json series = st::table({"gap_um", "t_ms", "strain", "tilt_deg", "jeffery_tilt_deg", "gap_now_um", "height_um"}, {"um", "ms", "", "deg", "deg", "um", "um"});
     const Json summary = st::table({"gap_um", "min_gap_um", "tilt_end_deg", "tilt_rate_over_gdot", "jeffery_rate_over_gdot", "rate_over_jeffery", "flips",
                                     "flip_frequency_1_s", "edge_on_ms", "tumble_frequency_1_s", "edge_on_ms_per_tumble", "wobble_frequency_1_s", "volume_change_rel"},
@@ -195,11 +225,24 @@ int main(int argc, char** argv) {
                            {"", "ms", "us", "us", "", "s", "h", "um", "um/s", "um", "um", "deg", "deg", "", ""});
     Json cost = st::table({"wall", "h_um", "dt_us", "steps", "seconds", "seconds_per_step", "steps_to_100ms", "hours_to_100ms", "hours_to_go"},
                           {"", "um", "us", "", "s", "s", "", "h", "h"});
-    WallRun runs[3] = {{Wall::tethers, "", "tethers (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm)", 3, series, summary},
-                       {Wall::grid, "_grid_wall", "grid wall", 2, series, summary},
-                       {Wall::rule, "_tether_rule", "tethers following the step (gain 0.5)", 1, series, summary}};
+    WallRun runs[3] = {{Wall::tethers, "", "_tethers", "tethers (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm)", 3, false, s.t_ab, series, summary},
+                       {Wall::grid, "_grid_wall", "_grid_wall", "grid wall", 2, false, s.t_ab, series, summary},
+                       {Wall::rule, "_tether_rule", "_tether_rule", "tethers following the step (gain 0.5)", 1, true, s.t_end, series, summary}};
     const st::Sitting sitting(opt);
     for (WallRun& w : runs) run_wall(w, s, sitting, opt, results, walls, cost);
+    // The A/B at the window's end: each wall against the seed's tethers at their fixed step.
+    Json ab = st::table({"wall", "t_ms", "tilt_deg_near", "tilt_deg_far", "tilt_minus_seed_deg_near", "tilt_minus_seed_deg_far", "gap_um_near",
+                         "gap_um_far", "gap_minus_seed_um_near", "gap_minus_seed_um_far", "wall_displacement_um"},
+                        {"", "ms", "deg", "deg", "deg", "deg", "um", "um", "um", "um", "um"});
+    const WallRun& seed = runs[0];
+    for (const WallRun& w : runs) {
+      const double deg = 180 / pi, um = units::um;
+      ab["rows"].push(row({w.label, s.t_ab / ms, st::number(w.tilt_ab[0] * deg), st::number(w.tilt_ab[1] * deg),
+                           st::number((w.tilt_ab[0] - seed.tilt_ab[0]) * deg), st::number((w.tilt_ab[1] - seed.tilt_ab[1]) * deg),
+                           st::number(w.gap_ab[0] / um), st::number(w.gap_ab[1] / um), st::number((w.gap_ab[0] - seed.gap_ab[0]) / um),
+                           st::number((w.gap_ab[1] - seed.gap_ab[1]) / um), st::number(w.displacement_ab / um)}));
+    }
+    results["tables"]["wall_ab"] = ab;
     for (const WallRun& w : runs) {
       results["tables"]["platelets" + w.suffix] = w.series;
       results["tables"]["summary" + w.suffix] = w.summary;
