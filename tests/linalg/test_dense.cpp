@@ -62,7 +62,8 @@ Eigen::MatrixXd abs_lu(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {
 }
 
 TEST(Dense, GemmMatchesLoopsInEveryTransposeCombination) {
-  const index_t m = 37, n = 11, k = 23;
+  const index_t m = 37, k = 23;
+  for (index_t n : {11, 1})  // one column: the matrix-vector path
   for (Op oa : {Op::none, Op::transpose})
     for (Op ob : {Op::none, Op::transpose}) {
       const index_t ar = oa == Op::none ? m : k, ac = oa == Op::none ? k : m;
@@ -80,8 +81,38 @@ TEST(Dense, GemmMatchesLoopsInEveryTransposeCombination) {
           const double want = 2 * e.value - 0.5 * c0[i + j * m];
           worst = std::max(worst, std::abs(c[i + j * m] - want) / gemm_tolerance(k, 2.0, e, -0.5, c0[i + j * m]));
         }
-      EXPECT_LE(worst, 1.0) << int(oa) << int(ob);
+      EXPECT_LE(worst, 1.0) << int(oa) << int(ob) << " n = " << n;
     }
+}
+
+TEST(Dense, OneColumnProductsReadStridedOperands) {
+  // op(B) one column: B's column 2 of a 9 x 3 block, or (transposed) B's row 1 of a 3 x 9 matrix
+  // (stride 3); C a column of a block whose leading dimension exceeds its rows; batches of two.
+  const index_t m = 6, k = 9;
+  const auto a = random_values(2 * m * k, 11), bn = random_values(k * 3, 12), bt = random_values(3 * k, 13);
+  DeviceMatrix A = DeviceMatrix::from_host(m, 2 * k, a.data());
+  DeviceMatrix Bn = DeviceMatrix::from_host(k, 3, bn.data()), Bt = DeviceMatrix::from_host(3, k, bt.data());
+  for (Op ob : {Op::none, Op::transpose}) {
+    DeviceMatrix C(m + 2, 4);
+    thrust::fill(C.storage().begin(), C.storage().end(), 7.0);
+    const ConstMatrixView B = ob == Op::none ? Bn.view().block(0, 2, k, 1) : Bt.view().block(1, 0, 1, k);
+    gemm_strided_batched(Op::none, ob, 1.0, A.view().block(0, 0, m, k), m * k, B, 0, 0.0, C.view().block(1, 0, m, 1), 2 * (m + 2), 2);
+    const auto c = C.to_host();
+    std::vector<double> x(static_cast<std::size_t>(k));
+    for (index_t l = 0; l < k; ++l) x[std::size_t(l)] = ob == Op::none ? bn[l + 2 * k] : bt[1 + 3 * l];
+    for (index_t q = 0; q < 2; ++q)
+      for (index_t i = 0; i < m + 2; ++i) {
+        const index_t col = 2 * q;
+        if (i == 0 || i == m + 1) {
+          EXPECT_EQ(c[i + col * (m + 2)], 7.0);
+          continue;
+        }
+        const std::vector<double> aq(a.begin() + q * m * k, a.begin() + (q + 1) * m * k);
+        const Entry e = reference_entry(Op::none, Op::none, aq, m, x, k, k, i - 1, 0);
+        EXPECT_NEAR(c[i + col * (m + 2)], e.value, gemm_tolerance(k, 1.0, e, 0.0, 0.0)) << int(ob) << " " << q << " " << i;
+      }
+    for (index_t i = 0; i < m + 2; ++i) EXPECT_EQ(c[i + 1 * (m + 2)], 7.0);  // the column between the batches
+  }
 }
 
 TEST(Dense, GemmOnBlocksHonoursTheLeadingDimension) {

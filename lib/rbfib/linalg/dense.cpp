@@ -119,6 +119,17 @@ void gemm_strided_batched(Op op_a, Op op_b, double alpha, ConstMatrixView A, ind
                                            ld_of(C.ld), stride_c, to_int(count, "gemm: batch count")),
                  "cublasDgemmStridedBatched");
 #else
+  if (n == 1) {
+    // A product with one column is a matrix-vector product: dgemv streams A once, where OpenBLAS's
+    // dgemm first packs A and then runs its kernel on a padded panel (about twice the time for an
+    // operator of tens of MB, as a surface's jets or bending derivatives of one cell).
+    const int ar = to_int(A.rows, "gemm: rows of A"), ac = to_int(A.cols, "gemm: columns of A");
+    const int incx = op_b == Op::none ? 1 : ld_of(B.ld);  // op(B) = B's column, or B's row
+    for (index_t b = 0; b < count; ++b)
+      cblas_dgemv(CblasColMajor, cblas_op(op_a), ar, ac, alpha, A.data + b * stride_a, ld_of(A.ld), B.data + b * stride_b, incx, beta,
+                  C.data + b * stride_c, 1);
+    return;
+  }
   for (index_t b = 0; b < count; ++b)
     cblas_dgemm(CblasColMajor, cblas_op(op_a), cblas_op(op_b), im, in, ik, alpha, A.data + b * stride_a, ld_of(A.ld),
                 B.data + b * stride_b, ld_of(B.ld), beta, C.data + b * stride_c, ld_of(C.ld));
