@@ -163,6 +163,14 @@ index_t ImmersedBoundary::add(TetheredPoints p) {
 
 index_t ImmersedBoundary::add(LdsmShell shell) { return keep(std::make_unique<LdsmShellSet>(std::move(shell)), shells_); }
 
+index_t ImmersedBoundary::add(HeldWall wall) {
+  const std::string field = "held wall '" + wall.name + "'";
+  require(held_.empty(), field + ": held walls", held_.size() + 1, "must be at most one");
+  require(!fluid_->has_midpoint_velocity(), field + ": fluid", fluid_->name(),
+          "must be affine in its force (not Peskin's two-stage scheme, whose advection uses the half step's velocity)");
+  return keep(std::make_unique<HeldWallSet>(std::move(wall)), held_);
+}
+
 index_t ImmersedBoundary::add(Cortex cortex, const LagrangianSet& membrane) {
   const std::string field = "cortex '" + cortex.name + "'";
   require(options_.coupling == Coupling::forward_euler, field + ": coupling", to_string(options_.coupling),
@@ -226,8 +234,15 @@ IbStepReport ImmersedBoundary::attempt() {
       throw NumericalError(Cause::stopping_condition, "stopping condition (eq. 5.4) violated: ||f||_inf = " + to_text(r.max_force_density) +
                                                           " dyn/cm^3, dt = " + to_text(dt) + " s > (1/4) sqrt(h rho / ||f||_inf) = " +
                                                           to_text(r.dt_bound) + " s");
-    // (e) the fluid step, into the fluid's other buffer.
+    // (e) the fluid step, into the fluid's other buffer; with a held wall, its force solved from
+    // that step and the step taken again with it (sim/held_wall.hpp).
     r.fluid = fluid_->step(&f_);
+    if (!held_.empty()) {
+      auto th = clock_type::now();
+      held_.front()->hold(ib_, *fluid_, options_.spreading, f_, scratch_);
+      r.fluid = fluid_->step(&f_);
+      r.seconds_held = seconds_since(th);
+    }
     const FluidState& next = fluid_->next();
     for (int a = 0; a < 3; ++a)
       if (!blas::all_finite(next.u[a]))

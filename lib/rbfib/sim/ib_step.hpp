@@ -45,6 +45,7 @@
 #include "rbfib/fluid/fluid_step.hpp"
 #include "rbfib/ib/interaction.hpp"
 #include "rbfib/sim/cortex.hpp"
+#include "rbfib/sim/held_wall.hpp"
 #include "rbfib/sim/lagrangian.hpp"
 
 #include <memory>
@@ -112,6 +113,7 @@ struct IbStepReport {
   std::array<double, 3> frame_velocity{0, 0, 0};
   double seconds_interpolation = 0, seconds_forces = 0, seconds_spreading = 0, seconds_fluid = 0, seconds_update = 0;
   double seconds_force_products = 0;  ///< the cells' dense products (part of seconds_forces)
+  double seconds_held = 0;  ///< a held wall's solve and second fluid step (part of seconds_fluid)
   StepStats fluid;
 };
 
@@ -143,6 +145,12 @@ class ImmersedBoundary {
   const CortexSet& cortex(index_t c) const { return *cortices_.at(c); }
   CortexSet& cortex(index_t c) { return *cortices_.at(c); }
   index_t cortices() const { return index_t(cortices_.size()); }
+  /// Adds a wall held exactly by a solve (sim/held_wall.hpp); returns its index. Throws InputError
+  /// naming the field for a second held wall, a fluid step that is not affine in its force (Peskin's
+  /// two-stage scheme advects with the half step's velocity), or bad markers.
+  index_t add(HeldWall wall);
+  const HeldWallSet& held_wall(index_t w) const { return *held_.at(w); }
+  index_t held_walls() const { return index_t(held_.size()); }
   const CellBatchSet& batch_set(index_t b) const { return *batches_.at(b); }
   cells::Batch& batch(index_t b) { return batches_.at(b)->batch(); }
   const cells::Batch& batch(index_t b) const { return batches_.at(b)->batch(); }
@@ -217,6 +225,7 @@ class ImmersedBoundary {
   std::vector<TetheredPointSet*> points_;
   std::vector<LdsmShellSet*> shells_;
   std::vector<CortexSet*> cortices_;
+  std::vector<HeldWallSet*> held_;
   VectorField f_, scratch_;  // the force density; a scratch field for the non-binned spreadings
   long steps_ = 0;
   int level_ = 0, allowing_ = 0;  // adaptive step: current level, consecutive steps allowing a doubling

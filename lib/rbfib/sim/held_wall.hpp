@@ -1,0 +1,77 @@
+#pragma once
+// A wall held exactly: fixed markers whose force is solved every step so that the fluid's velocity
+// interpolated at them after the step is zero (a constraint, beyond the seed, which ties its
+// endothelium to anchors by damped springs, eq. 2.10). The method is the immersed-boundary
+// projection of Taira and Colonius (2007) and the rigid-multiblob wall of Kallemov, Bhalla, Griffith
+// and Donev (2016), written for this library's coupled step:
+//   the fluid step is affine in its force, u^{n+1} = u_0 + L f, with L linear and fixed at a given
+//   dt (backward-forward Euler or Stokes: the advection uses u^n only). With the cells' and the
+//   other sets' force density f, the step gives u* = u_0 + L f; the wall force Lambda at the
+//   markers solves
+//       M Lambda = -J u*,   M = J L S   (J: interpolation at the markers, S: spreading from them),
+//   and the step is taken again with f + S Lambda, so that J u^{n+1} = 0 to the rounding of the
+//   solve. M, 3n x 3n for n markers, is the wall's mobility at this step size: it is built once
+//   per dt (one fluid step per column, by differences from the same state: L is fixed, and the
+//   trial forces are scaled so that the differences lose no digits) and kept as LU factors, one
+//   per ladder level.
+// Markers about 2h apart (Kallemov et al.): closer, M is near singular (its columns overlap);
+// farther, the fluid leaks between them. The held force takes no part in eq. 5.4: it is the
+// solution of a constraint, not an explicit elastic force, and sets no step.
+// Cost per step: a second fluid step, one interpolation and one spreading at the markers, one LU
+// solve of order 3n; per new dt, 3n + 1 fluid steps and one LU factorization (O(n^3)).
+// Units (CGS): positions cm, forces dyn.
+#include "rbfib/fluid/fluid_step.hpp"
+#include "rbfib/linalg/dense.hpp"
+#include "rbfib/sim/lagrangian.hpp"
+
+#include <map>
+#include <string>
+
+namespace rbfib::sim {
+
+struct HeldWall {
+  std::string name;
+  dvec X;  ///< marker positions, 3n, X[d n + k] (cm); they do not move
+};
+
+class HeldWallSet final : public LagrangianSet {
+ public:
+  /// Throws InputError naming the field for an empty or non-finite set of markers.
+  explicit HeldWallSet(HeldWall wall);
+  std::string name() const override { return "held wall '" + wall_.name + "'"; }
+  void save() override {}  // nothing moves
+  void restore() override {}
+  void locate(ib::Interaction& ib) override;
+  void interpolate_start(ib::Interaction&, const VectorField&) override {}
+  void predict(double) override {}
+  double compute_force() override { return 0; }  // its force is solved after the fluid step (hold)
+  void spread(ib::Interaction&, ib::Spreading, VectorField&, VectorField&) override {}
+  void interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) override;
+  void update(double, const std::array<double, 3>&) override {}
+
+  /// After fluid.step(&f) (fluid.next() holds u*): solves M Lambda = -J u* and adds S Lambda to f;
+  /// the caller then steps the fluid again with f. Builds and factors M for fluid.dt() the first
+  /// time that dt is seen (stepping the fluid 3n + 1 times, then once more with f). Throws
+  /// NumericalError naming the set for a singular mobility or a non-finite velocity.
+  void hold(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algorithm, VectorField& f, VectorField& scratch);
+
+  const HeldWall& wall() const { return wall_; }
+  /// The wall force of the last hold() at each marker (dyn), 3n, and its velocity at the markers
+  /// after the step (interpolate_end; cm/s): the slip the solve leaves.
+  const dvec& force() const { return lambda_; }
+  const dvec& velocity() const { return U_; }
+  /// The mobilities factored so far (one per dt seen), and the seconds spent building them.
+  std::size_t mobilities() const { return mobility_.size(); }
+  double seconds_building() const { return seconds_building_; }
+
+ private:
+  linalg::LuFactors build(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algorithm, const VectorField& shape, VectorField& scratch);
+
+  HeldWall wall_;
+  ib::SortedPoints at_, spread_;
+  dvec U_, lambda_;
+  std::map<double, linalg::LuFactors> mobility_;  // by dt
+  double seconds_building_ = 0;
+};
+
+}  // namespace rbfib::sim
