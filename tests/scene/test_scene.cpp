@@ -229,6 +229,33 @@ TEST(Scene, AWallTurnsAsInSection521) {
   EXPECT_EQ(field_of(replaced(turning, "speed: 16 mm/s", "pace: 16 mm/s")), "domain.walls.y.upper.speed");
 }
 
+TEST(Scene, AHeldWallReadsWritesBackAndBuildsOnAnAffineFluidStep) {
+  // held_walls: markers on a plane (sim/held_wall.hpp), written back as read; the fluid must be
+  // affine in its force, which Peskin's two-stage scheme is not: named.
+  const std::string held = replaced(channel_scene, R"(tethered_points:
+  - name: endothelium
+    plane: {y: 1 um, points: [32, 30]}
+    k: 2.5 dyn/cm
+    eta: 2.5e-7 dyn s/cm
+)", "held_walls:\n  - {name: wall, plane: {y: 1 um, points: [8, 6]}}\n");
+  const Scene s = parse_scene(held, "held");
+  ASSERT_EQ(s.held_walls.size(), 1u);
+  EXPECT_TRUE(s.point_sets.empty());
+  const Scene back = parse_scene(to_yaml(s), "back");
+  ASSERT_EQ(back.held_walls.size(), 1u);
+  EXPECT_EQ(back.held_walls[0].name, "wall");
+  EXPECT_EQ(back.held_walls[0].surface.lattice, (std::array<int, 2>{8, 6}));
+  EXPECT_EQ(back.held_walls[0].surface.at, s.held_walls[0].surface.at);
+  EXPECT_EQ(field_of(held), "held wall 'wall': fluid");
+  const std::string affine = replaced(replaced(held, "integrator: peskin_two_stage", "integrator: backward_forward_euler"), "coupling: midpoint",
+                                      "coupling: seed");
+  const sim::ImmersedBoundary ib = build(parse_scene(affine, "affine"));
+  EXPECT_EQ(ib.held_walls(), 1);
+  EXPECT_EQ(ib.point_sets(), 0);
+  EXPECT_EQ(ib.held_wall(0).wall().X.size(), 3u * 48u);
+  EXPECT_EQ(field_of(replaced(affine, "plane: {y: 1 um, points: [8, 6]}", "plane: {y: 1 um}")), "held_walls[0].plane.points");
+}
+
 TEST(Scene, TheEndotheliumOfEquation55LiesOnTheToroidalSpiral) {
   // Sec. 5.2: 16,000 points on the toroidal spiral of Appendix B, flat (y = 1 um) or bumpy
   // (y = 0.75 um + 1 um cos^2(theta - phi) sin^2(phi / 2)), x = 16 um theta / 2 pi, z = 16 um phi / 2 pi.

@@ -568,6 +568,12 @@ Scene parse_scene(const std::string& yaml, const std::string& origin) {
     }
   if (f.has("tethered_points"))
     for (const Fields& p : f.list_of_maps("tethered_points")) s.point_sets.push_back(read_points(p, s));
+  if (f.has("held_walls"))
+    for (const Fields& w : f.list_of_maps("held_walls")) {
+      HeldWallEntry e{w.string("name"), read_point_surface(w, s)};
+      w.finish();
+      s.held_walls.push_back(std::move(e));
+    }
   if (f.has("output")) {
     const Fields o = f.map("output");
     if (o.has("diagnostics_every")) s.diagnostics_every = int(o.integer("diagnostics_every", 1, 1000000000));
@@ -816,6 +822,10 @@ sim::ImmersedBoundary build(const Scene& s, const StartingState* start) {
     }
     ib.add(std::move(points));
   }
+  for (const HeldWallEntry& w : s.held_walls) {
+    const std::vector<double> X = point_positions(w.surface, s.grid.length);
+    ib.add(sim::HeldWall{w.name, dvec(X.begin(), X.end())});
+  }
   if (start) {
     sim::ImmersedBoundary::Carried c = ib.carried();
     c.fluid = start->state.fluid;
@@ -988,6 +998,14 @@ std::string to_yaml(const Scene& s, const std::string& comment) {
     else o << ", points: [" << f.lattice[0] << ", " << f.lattice[1] << "]";
     if (p.follow_gain > 0) o << "}, follow_step: {gain: " << q(p.follow_gain, "") << "}}\n";
     else o << "}, k: " << q(p.k, "dyn/cm") << ", eta: " << q(p.eta, "dyn s/cm") << "}\n";
+  }
+  if (!s.held_walls.empty()) o << "held_walls:\n";
+  for (const HeldWallEntry& w : s.held_walls) {
+    const PointSurface& f = w.surface;
+    o << "  - {name: " << yaml_name(w.name) << ", " << (f.spiral ? "spiral" : "plane") << ": {" << axis_name[f.normal] << ": " << q(f.at, "cm");
+    if (f.spiral) o << ", bump: " << q(f.bump, "cm") << ", points: " << f.points;
+    else o << ", points: [" << f.lattice[0] << ", " << f.lattice[1] << "]";
+    o << "}}\n";
   }
   o << "output: {diagnostics_every: " << s.diagnostics_every;
   if (s.checkpoint_every > 0) o << ", checkpoint_every: " << q(s.checkpoint_every, "s");

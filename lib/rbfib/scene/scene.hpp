@@ -86,6 +86,13 @@ struct PointSetEntry {
   double follow_gain = 0;  ///< > 0: k and eta follow the step at this gain, in (0, 1)
 };
 
+/// A wall held exactly by a solve (sim/held_wall.hpp): markers on a surface, about 2h apart.
+/// YAML: `held_walls: [{name: endothelium, plane: {y: 1 um, points: [40, 40]}}]`.
+struct HeldWallEntry {
+  std::string name;
+  PointSurface surface;
+};
+
 /// The points of a set on its surface in a box of the given lengths (cm), n x 3 column-major.
 std::vector<double> point_positions(const PointSurface& surface, const std::array<double, 3>& box);
 /// The tethered points of an entry, anchored where they start.
@@ -126,6 +133,7 @@ struct Scene {
   std::vector<CellTypeEntry> types;
   std::vector<CellEntry> cells;
   std::vector<PointSetEntry> point_sets;
+  std::vector<HeldWallEntry> held_walls;
   int diagnostics_every = 1;  ///< steps between rows of the diagnostics table
   double checkpoint_every = 0;  ///< simulated time between checkpoints (s); 0: only at the end
   double snapshot_every = 0;    ///< simulated time between snapshots (s); 0: none
