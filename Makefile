@@ -11,6 +11,7 @@ CMAKE_ARGS ?=
 # Debian packages the project needs (Thrust comes from the CUDA toolkit when it is installed,
 # else from Debian's libthrust-dev).
 DEBS := cmake make g++ ccache libomp-dev libeigen3-dev libopenblas-openmp-dev libfftw3-dev libhypre-dev libhdf5-dev libyaml-cpp-dev libcli11-dev libgtest-dev googletest \
+        libopenmpi-dev openmpi-bin libfftw3-mpi-dev \
         python3 python3-matplotlib python3-numpy python3-yaml python3-h5py python3-venv
 THRUST_FROM_CUDA := $(wildcard /usr/local/cuda/targets/x86_64-linux/include/cccl/thrust/version.h /usr/local/cuda/include/thrust/version.h)
 ifeq ($(strip $(THRUST_FROM_CUDA)),)

@@ -3,6 +3,7 @@
 
 #include "rbfib/core/error.hpp"
 #include "rbfib/fluid/poisson.hpp"
+#include "rbfib/fluid/wall_modes.hpp"
 
 #include <thrust/transform.h>
 
@@ -75,39 +76,12 @@ void FourierSolver::solve(const dvec& b, dvec& x) const {
       w[p] = (singular && p == 0) ? linalg::complex(0.0, 0.0) : w[p] / a;
     });
   } else {
-    // One tridiagonal system in y per (k_x, k_z): the Thomas algorithm, c' kept in `cp`.
-    const AxisStencil ay = s.axis[1];
-    const double off = beta * ay.inv_h2;
+    // One tridiagonal system in y per (k_x, k_z): the Thomas algorithm (wall_modes.hpp).
+    const kernels::WallModes modes{s.axis[1], alpha, beta};
     double* cp = ptr(thomas_);
     for_each_index(index_t(nx) * nz, [=] RBFIB_HD (index_t m) {
       const index_t i = m % nx, k = m / nx;
-      const double mu = mux[i] + muz[k];
-      const bool pin = singular && m == 0;  // x_0 = 0 replaces the redundant first equation
-      auto diag = [&](int j) {
-        const double ends = (j == 0 ? ay.lo.ghost : 0.0) + (j == ny - 1 ? ay.hi.ghost : 0.0);
-        const double wj = ay.weight(j);
-        return alpha * wj + beta * (wj * mu + (ends - 2.0) * ay.inv_h2);
-      };
-      const index_t base = i + index_t(nx) * ny * k, st = nx;
-      // forward sweep
-      double d0 = pin ? 1.0 : diag(0);
-      double c = pin ? 0.0 : off / d0;
-      linalg::complex r = pin ? linalg::complex(0.0, 0.0) : w[base] / d0;
-      cp[base] = c;
-      w[base] = r;
-      for (int j = 1; j < ny; ++j) {
-        const index_t p = base + j * st;
-        const double den = diag(j) - off * c;
-        c = off / den;
-        r = (w[p] - off * r) / den;
-        cp[p] = c;
-        w[p] = r;
-      }
-      // back substitution
-      for (int j = ny - 2; j >= 0; --j) {
-        const index_t p = base + j * st;
-        w[p] = w[p] - cp[p] * w[p + st];
-      }
+      modes.solve(mux[i] + muz[k], singular && m == 0, w, cp, i + index_t(nx) * ny * k, nx);
     });
   }
 

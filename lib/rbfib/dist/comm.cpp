@@ -1,0 +1,57 @@
+#include "rbfib/dist/comm.hpp"
+
+#include "rbfib/core/error.hpp"
+
+#include <fftw3-mpi.h>
+
+namespace rbfib::dist {
+
+void check(int mpi_result, const std::string& what) {
+  if (mpi_result == MPI_SUCCESS) return;
+  char text[MPI_MAX_ERROR_STRING];
+  int length = 0;
+  MPI_Error_string(mpi_result, text, &length);
+  throw NumericalError(Cause::solver, what + ": MPI error: " + std::string(text, static_cast<std::size_t>(length)));
+}
+
+Session::Session(int& argc, char**& argv) {
+  int provided = MPI_THREAD_SINGLE;
+  check(MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+  if (provided < MPI_THREAD_FUNNELED)
+    throw NumericalError(Cause::solver, "MPI: this library offers no MPI_THREAD_FUNNELED (OpenMP teams inside a rank need it)");
+  // Errors come back as codes (check() turns them into exceptions), not as an abort inside MPI.
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+  // FFTW's threads first, then its MPI transforms (FFTW 3.3 manual, sec. 6.11).
+  fftw_init_threads();
+  fftw_mpi_init();
+}
+
+Session::~Session() {
+  fftw_mpi_cleanup();
+  MPI_Finalize();
+}
+
+Comm::Comm(MPI_Comm comm) : comm_(comm) {
+  check(MPI_Comm_rank(comm_, &rank_), "MPI_Comm_rank");
+  check(MPI_Comm_size(comm_, &size_), "MPI_Comm_size");
+}
+
+namespace {
+template <class T>
+T reduce(MPI_Comm comm, T v, MPI_Datatype type, MPI_Op op) {
+  T out{};
+  check(MPI_Allreduce(&v, &out, 1, type, op, comm), "MPI_Allreduce");
+  return out;
+}
+}  // namespace
+
+double Comm::sum(double v) const { return reduce(comm_, v, MPI_DOUBLE, MPI_SUM); }
+double Comm::max(double v) const { return reduce(comm_, v, MPI_DOUBLE, MPI_MAX); }
+double Comm::min(double v) const { return reduce(comm_, v, MPI_DOUBLE, MPI_MIN); }
+index_t Comm::sum(index_t v) const {
+  static_assert(sizeof(index_t) == sizeof(long long));
+  return static_cast<index_t>(reduce(comm_, static_cast<long long>(v), MPI_LONG_LONG, MPI_SUM));
+}
+bool Comm::all(bool ok) const { return reduce(comm_, ok ? 1 : 0, MPI_INT, MPI_LAND) != 0; }
+
+}  // namespace rbfib::dist

@@ -1,0 +1,46 @@
+#pragma once
+// The ranks of one run and what they agree on (MPI: Debian's OpenMPI). Each rank runs its own
+// OpenMP team; MPI is called from the team's master thread only (MPI_THREAD_FUNNELED).
+//
+// Every reduction here is collective: all ranks of the communicator call it in the same order.
+#include "rbfib/core/exec.hpp"
+
+#include <mpi.h>
+
+#include <string>
+
+namespace rbfib::dist {
+
+/// MPI and FFTW's distributed transforms for the life of the object (one per program, in main).
+class Session {
+ public:
+  Session(int& argc, char**& argv);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+};
+
+class Comm {
+ public:
+  explicit Comm(MPI_Comm comm = MPI_COMM_WORLD);
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  MPI_Comm get() const { return comm_; }
+
+  double sum(double v) const;
+  double max(double v) const;
+  double min(double v) const;
+  index_t sum(index_t v) const;
+  /// true on every rank when `ok` is true on every rank (a stop agreed by all).
+  bool all(bool ok) const;
+
+ private:
+  MPI_Comm comm_;
+  int rank_ = 0, size_ = 1;
+};
+
+/// Throws NumericalError(Cause::solver) naming `what` when an MPI call did not succeed.
+void check(int mpi_result, const std::string& what);
+
+}  // namespace rbfib::dist

@@ -1,0 +1,138 @@
+#include "rbfib/dist/fourier_solver.hpp"
+
+#include "rbfib/core/constants.hpp"
+#include "rbfib/core/error.hpp"
+#include "rbfib/fluid/wall_modes.hpp"
+
+#include <fftw3-mpi.h>
+#include <thrust/reduce.h>
+#include <omp.h>
+
+#include <cmath>
+
+namespace rbfib::dist {
+
+namespace {
+/// Sum over this rank's entries, then over all ranks: the mean of a field over the whole box.
+double global_mean(const Slabs& slabs, const dvec& v) {
+  return slabs.comm().sum(thrust::reduce(v.begin(), v.end(), 0.0)) / double(slabs.box().size());
+}
+
+host_vector<double> eigenvalues(const AxisStencil& a, int n) {
+  host_vector<double> mu(static_cast<std::size_t>(n), 0.0);
+  if (a.periodic)
+    for (int k = 0; k < n; ++k) mu[k] = -(2.0 - 2.0 * std::cos(2 * pi * k / n)) * a.inv_h2;
+  return mu;
+}
+}  // namespace
+
+FourierSolver::FourierSolver(const Slabs& slabs, Correction correction, double alpha, double beta, const std::string& name)
+    : slabs_(slabs), lap_(slabs.box(), correction), alpha_(alpha), beta_(beta), name_(name) {
+  const Box& box = slabs.box();
+  require(box.dims == 3 && box.axes[0].periodic() && box.axes[2].periodic(), name + ": box",
+          "not periodic along x and z", "the distributed Fourier solver needs x and z periodic (walls in y only)");
+  require(alpha >= 0 && std::isfinite(alpha), name + ": alpha (coefficient of I~)", alpha, "must be finite and >= 0");
+  require(beta <= 0 && std::isfinite(beta), name + ": beta (coefficient of L)", beta, "must be finite and <= 0");
+  require(alpha > 0 || beta < 0, name + ": alpha, beta", "0, 0", "the operator must not vanish");
+  const kernels::LaplacianStencil& s = lap_.stencil();
+  wall_ = !box.axes[1].periodic();
+  const bool neumann_both = wall_ && s.axis[1].lo.ghost == 1.0 && s.axis[1].hi.ghost == 1.0;
+  singular_ = alpha == 0 && (!wall_ || neumann_both);
+  const int nx = box.n(0), ny = box.n(1), nz = box.n(2);
+  mux_ = eigenvalues(s.axis[0], nx);
+  muy_ = eigenvalues(s.axis[1], ny);
+  muz_ = eigenvalues(s.axis[2], nz);
+
+  const ptrdiff_t n[2] = {nz, nx};
+  ptrdiff_t local_n0 = 0, local_0_start = 0, local_n1 = 0, local_1_start = 0;
+  alloc_ = fftw_mpi_local_size_many_transposed(2, n, ny, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, slabs.comm().get(),
+                                               &local_n0, &local_0_start, &local_n1, &local_1_start);
+  // Agreed by all ranks (a rank that threw alone would leave the others in the plan's collectives);
+  // an empty slab's start is any.
+  const bool same = local_n0 == slabs.planes() && (local_n0 == 0 || local_0_start == slabs.first());
+  require(slabs.comm().all(same), name + ": slabs",
+          "planes " + to_text(slabs.first()) + " + " + to_text(slabs.planes()),
+          "must be FFTW's distribution, planes " + to_text(local_0_start) + " + " + to_text(local_n0));
+  modes_ = local_n1;
+  first_mode_ = local_1_start;
+  alloc_ = std::max<index_t>(alloc_, 1);
+  auto* work = fftw_alloc_complex(static_cast<std::size_t>(alloc_));
+  work_ = work;
+  // FFTW_ESTIMATE: the same plan every run, as bitwise restarts need (linalg/fft.cpp).
+  fftw_plan_with_nthreads(omp_get_max_threads());
+  MPI_Comm comm = slabs.comm().get();
+  forward_ = fftw_mpi_plan_many_dft(2, n, ny, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, work, work, comm, FFTW_FORWARD,
+                                    FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_OUT);
+  backward_ = fftw_mpi_plan_many_dft(2, n, ny, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, work, work, comm, FFTW_BACKWARD,
+                                     FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_IN);
+  if (!forward_ || !backward_) throw NumericalError(Cause::solver, name + ": FFTW could not plan the distributed transform");
+  if (!wall_ && modes_ > 0) {
+    // Along y, contiguous, one transform per (k_x, k_z) this rank holds.
+    fftw_iodim64 dim{ny, 1, 1}, loop{modes_ * nz, ny, ny};
+    forward_y_ = fftw_plan_guru64_dft(1, &dim, 1, &loop, work, work, FFTW_FORWARD, FFTW_ESTIMATE);
+    backward_y_ = fftw_plan_guru64_dft(1, &dim, 1, &loop, work, work, FFTW_BACKWARD, FFTW_ESTIMATE);
+    if (!forward_y_ || !backward_y_) throw NumericalError(Cause::solver, name + ": FFTW could not plan the transforms along y");
+  }
+  if (wall_) thomas_.resize(static_cast<std::size_t>(alloc_));
+}
+
+FourierSolver::~FourierSolver() {
+  for (void* p : {forward_, backward_, forward_y_, backward_y_})
+    if (p) fftw_destroy_plan(static_cast<fftw_plan>(p));
+  fftw_free(work_);
+}
+
+void FourierSolver::solve(const dvec& b, dvec& x) const {
+  const index_t local = slabs_.local_size();
+  require(static_cast<index_t>(b.size()) == local, name_ + ": right-hand side size", b.size(),
+          "must be this rank's slab, " + to_text(local));
+  const Box& box = slabs_.box();
+  const int nx = box.n(0), ny = box.n(1), nz = box.n(2);
+  const double mean = singular_ ? global_mean(slabs_, b) : 0.0;
+
+  // (z, y, x) -> (z, x, y): y fastest, as the batched transform wants.
+  auto* w = reinterpret_cast<linalg::complex*>(work_);
+  const double* in = ptr(b);
+  for_each_index(local, [=] RBFIB_HD (index_t p) {
+    const index_t i = p % nx, q = p / nx, j = q % ny, k = q / ny;
+    w[(k * nx + i) * ny + j] = linalg::complex(in[p] - mean, 0.0);
+  });
+  fftw_execute(static_cast<fftw_plan>(forward_));
+  if (forward_y_) fftw_execute(static_cast<fftw_plan>(forward_y_));
+
+  // This rank's modes: (k_x local, k_z, y), y fastest.
+  const double alpha = alpha_, beta = beta_;
+  const bool singular = singular_;
+  const double *mux = mux_.data() + first_mode_, *muy = muy_.data(), *muz = muz_.data();
+  const bool owns_zero = first_mode_ == 0;
+  if (!wall_) {
+    for_each_index(modes_ * nz * ny, [=] RBFIB_HD (index_t p) {
+      const index_t j = p % ny, q = p / ny, k = q % nz, i = q / nz;
+      const double a = alpha + beta * (mux[i] + muy[j] + muz[k]);
+      w[p] = (singular && owns_zero && p == 0) ? linalg::complex(0.0, 0.0) : w[p] / a;
+    });
+  } else {
+    const kernels::WallModes modes{lap_.stencil().axis[1], alpha, beta};
+    double* cp = ptr(thomas_);
+    for_each_index(modes_ * nz, [=] RBFIB_HD (index_t m) {
+      const index_t k = m % nz, i = m / nz;
+      modes.solve(mux[i] + muz[k], singular && owns_zero && m == 0, w, cp, m * ny, 1);
+    });
+  }
+
+  if (backward_y_) fftw_execute(static_cast<fftw_plan>(backward_y_));
+  fftw_execute(static_cast<fftw_plan>(backward_));
+  const double inv = 1.0 / (double(nx) * nz * (wall_ ? 1 : ny));
+  x.resize(static_cast<std::size_t>(local));
+  double* out = ptr(x);
+  for_each_index(local, [=] RBFIB_HD (index_t p) {
+    const index_t i = p % nx, q = p / nx, j = q % ny, k = q / ny;
+    out[p] = w[(k * nx + i) * ny + j].real() * inv;
+  });
+  if (singular_) {
+    const double m = global_mean(slabs_, x);
+    for_each_index(local, [=] RBFIB_HD (index_t p) { out[p] -= m; });
+  }
+}
+
+}  // namespace rbfib::dist
