@@ -53,15 +53,20 @@ Halo::Halo(const Slabs& slabs, int ghosts, const std::string& name) : slabs_(sla
           "each rank must own at least the " + to_text(ghosts) + " ghost planes the stencil reaches; use fewer ranks");
   below_ = (c.rank() + c.size() - 1) % c.size();
   above_ = (c.rank() + 1) % c.size();
-  buffer_.resize(static_cast<std::size_t>(ghosts) * slabs.plane_size());
+}
+
+index_t Halo::plane_size_of(const dvec& extended, const char* what) const {
+  const index_t planes = slabs_.planes() + 2 * ghosts_, size = static_cast<index_t>(extended.size());
+  require(planes > 0 && size % planes == 0 && size > 0, std::string(what) + ": field size", size,
+          "must be whole planes of the extended slab (" + to_text(planes) + " planes)");
+  return size / planes;
 }
 
 void Halo::fill(dvec& extended) const {
-  require(static_cast<index_t>(extended.size()) == extended_size(), "halo fill: field size", extended.size(),
-          "must be the extended slab's " + to_text(extended_size()));
+  const index_t ps = plane_size_of(extended, "halo fill");
   if (ghosts_ == 0) return;
   const int g = ghosts_, n = slabs_.planes();
-  const index_t ps = slabs_.plane_size(), count = g * ps;
+  const index_t count = g * ps;
   double* e = ptr(extended);
   MPI_Comm comm = slabs_.comm().get();
   // My bottom planes are the upper ghosts of the rank below; the rank above's are mine.
@@ -75,11 +80,11 @@ void Halo::fill(dvec& extended) const {
 }
 
 void Halo::sum(dvec& extended) const {
-  require(static_cast<index_t>(extended.size()) == extended_size(), "halo sum: field size", extended.size(),
-          "must be the extended slab's " + to_text(extended_size()));
+  const index_t ps = plane_size_of(extended, "halo sum");
   if (ghosts_ == 0) return;
   const int g = ghosts_, n = slabs_.planes();
-  const index_t ps = slabs_.plane_size(), count = g * ps;
+  const index_t count = g * ps;
+  if (static_cast<index_t>(buffer_.size()) < count) buffer_.resize(static_cast<std::size_t>(count));
   double* e = ptr(extended);
   double* b = ptr(buffer_);
   MPI_Comm comm = slabs_.comm().get();

@@ -46,7 +46,9 @@ class Slabs {
 /// the rank below's top planes, [g, g + n) the rank's own, [g + n, n + 2g) the rank above's bottom
 /// planes. Interpolation reads the ghosts after fill(); spreading writes into them and sum() adds
 /// them to their owners. Every rank must own at least `ghosts` planes, so that each ghost plane
-/// has one owner among the two neighbours.
+/// has one owner among the two neighbours. Any box split like the slabs' (the MAC grid's
+/// components and scalars share their z-planes) may pass through: a field's plane size is its
+/// size over the extended planes.
 class Halo {
  public:
   /// Throws InputError naming `name` when a rank owns fewer than `ghosts` planes.
@@ -61,10 +63,11 @@ class Halo {
   void fill(dvec& extended) const;
   /// Each ghost plane added into the plane its neighbour owns; the ghosts are then zero (collective).
   void sum(dvec& extended) const;
-  /// Bytes this rank sends in one fill() or one sum().
+  /// Bytes this rank sends in one fill() or one sum() of a field on the slabs' box.
   index_t bytes_per_exchange() const { return 2 * index_t(ghosts_) * slabs_.plane_size() * index_t(sizeof(double)); }
 
  private:
+  index_t plane_size_of(const dvec& extended, const char* what) const;
   const Slabs& slabs_;
   int ghosts_;
   int below_, above_;

@@ -39,8 +39,13 @@ struct Scaled {
 }  // namespace
 
 NavierStokesSolver::NavierStokesSolver(const MacGrid& grid, FluidParameters fluid, NavierStokesOptions options,
-                                       BoundaryVelocity boundary)
-    : grid_(grid), fluid_(fluid), options_(std::move(options)), boundary_(std::move(boundary)), ops_(grid) {
+                                       BoundaryVelocity boundary, std::shared_ptr<const FluidDecomposition> parts)
+    : grid_(parts ? parts->local_grid() : grid),
+      fluid_(fluid),
+      options_(std::move(options)),
+      boundary_(std::move(boundary)),
+      ops_(grid_),
+      parts_(std::move(parts)) {
   require(std::isfinite(fluid_.density) && fluid_.density > 0.0, "fluid.density", fluid_.density,
           "must be positive and finite (g/cm^3)");
   require(std::isfinite(fluid_.viscosity) && fluid_.viscosity > 0.0, "fluid.viscosity", fluid_.viscosity,
@@ -52,11 +57,26 @@ NavierStokesSolver::NavierStokesSolver(const MacGrid& grid, FluidParameters flui
     require(fourier_possible, "fluid.solvers", to_string(options_.solvers),
             "needs x and z periodic (y periodic or walls); this grid has walls across x or z");
   fourier_ = options_.solvers == FluidSolvers::fourier || (options_.solvers == FluidSolvers::automatic && fourier_possible);
+  if (parts_)
+    require(fourier_, "fluid.solvers", to_string(options_.solvers),
+            "a fluid split among processes needs the Fourier solvers (x and z periodic); the multigrid path runs on "
+            "one process only");
+  if (fourier_) {
+    for (int a = 0; a < grid_.dims; ++a) fourier_laplacians_.emplace_back(ops_.component_box(a), Correction::appendix_a);
+    fourier_laplacians_.emplace_back(ops_.scalar_box(), Correction::none);
+  }
   helmholtz_.push_back(make_helmholtz(options_.dt));
   if (fourier_)
-    fourier_poisson_ = std::make_unique<FourierSolver>(ops_.scalar_box(), Correction::none, 0.0, -1.0, options_.poisson.solver.name);
+    fourier_poisson_ = make_fourier(ops_.scalar_box(), Correction::none, 0.0, -1.0, options_.poisson.solver.name);
   else
     poisson_ = std::make_unique<PoissonSolver>(ops_.scalar_box(), options_.poisson);
+}
+
+DirectSolve NavierStokesSolver::make_fourier(const Box& box, Correction correction, double alpha, double beta,
+                                             const std::string& name) const {
+  if (parts_) return parts_->fourier(box, correction, alpha, beta, name);
+  auto solver = std::make_shared<const FourierSolver>(box, correction, alpha, beta, name);
+  return [solver](const dvec& b, dvec& x) { solver->solve(b, x); };
 }
 
 const char* to_string(FluidSolvers solvers) {
@@ -77,7 +97,7 @@ NavierStokesSolver::HelmholtzSet NavierStokesSolver::make_helmholtz(double dt) c
   for (int a = 0; a < grid_.dims; ++a) {
     const std::string name = options_.helmholtz.solver.name + " u" + std::to_string(a);
     if (fourier_) {
-      set.fourier[a] = std::make_unique<FourierSolver>(ops_.component_box(a), Correction::appendix_a, 1.0, -c, name);
+      set.fourier[a] = make_fourier(ops_.component_box(a), Correction::appendix_a, 1.0, -c, name);
     } else {
       HelmholtzOptions h = options_.helmholtz;
       h.solver.name = name;
@@ -110,11 +130,11 @@ const PoissonSolver& NavierStokesSolver::poisson() const {
 }
 
 const StaggeredLaplacian& NavierStokesSolver::velocity_laplacian(int a) const {
-  return fourier_ ? helmholtz_[current_].fourier[a]->laplacian() : helmholtz_[current_].multigrid[a]->laplacian();
+  return fourier_ ? fourier_laplacians_[a] : helmholtz_[current_].multigrid[a]->laplacian();
 }
 
 const StaggeredLaplacian& NavierStokesSolver::pressure_laplacian() const {
-  return fourier_ ? fourier_poisson_->laplacian() : poisson_->laplacian();
+  return fourier_ ? fourier_laplacians_.back() : poisson_->laplacian();
 }
 
 FluidState NavierStokesSolver::zero_state(double t) const {
@@ -142,7 +162,10 @@ const VelocityBoundaryData& NavierStokesSolver::boundary_data(double t) const {
   } else {
     data = zero_velocity_boundary(grid_);
   }
-  ops_.make_compatible(data);
+  const double shift = ops_.make_compatible(data);
+  // On a process's part the walls' outflow is a partial sum: only data without one is exact.
+  require(!parts_ || shift == 0.0, "fluid.boundary (normal wall velocity)", shift,
+          "must be zero on a fluid split among processes");
   if (cache_.size() >= 4) cache_.erase(cache_.begin());
   cache_.emplace_back(t, std::move(data));
   return cache_.back().second;
@@ -151,7 +174,7 @@ const VelocityBoundaryData& NavierStokesSolver::boundary_data(double t) const {
 double NavierStokesSolver::max_divergence(const FluidState& state) const {
   dvec div;
   ops_.divergence(state.u, &boundary_data(state.t), div);
-  return blas::norm_inf(div);
+  return parts_ ? parts_->max_abs(div) : blas::norm_inf(div);
 }
 
 void NavierStokesSolver::stage(const dvec& p_in, const dvec& phi_in, VectorField& u, dvec& p, dvec& phi,
@@ -202,7 +225,7 @@ void NavierStokesSolver::stage(const dvec& p_in, const dvec& phi_in, VectorField
   t0 = clock_type::now();
   for (int a = 0; a < dims; ++a) {
     if (fourier_) {
-      helmholtz_[current_].fourier[a]->solve(rhs_[a], ustar_[a]);
+      helmholtz_[current_].fourier[a](rhs_[a], ustar_[a]);
       continue;
     }
     ustar_[a] = u_src[a];  // initial guess
@@ -218,7 +241,7 @@ void NavierStokesSolver::stage(const dvec& p_in, const dvec& phi_in, VectorField
 
   t0 = clock_type::now();
   if (fourier_) {
-    fourier_poisson_->solve(div_, q_);
+    fourier_poisson_(div_, q_);
   } else {
     if (q_.size() != div_.size()) q_.assign(div_.size(), 0.0);
     // initial guess: the last pseudo-pressure, phi / k
@@ -238,7 +261,11 @@ void NavierStokesSolver::stage(const dvec& p_in, const dvec& phi_in, VectorField
   blas::axpy(rho, q_, p);
   blas::axpy(-theta * k * mu, lq_, p);
   phi.resize(q_.size());
-  for_each_index(index_t(q_.size()), Scaled{ptr(q_), k, ptr(phi)});  // phi = k q
+  for_each_index(index_t(q_.size()), Scaled{ptr(q_), k, ptr(phi)});  // phi = k q (q came back filled)
+  if (parts_) {  // u and p on the ghost planes: from their owners (the stencils' last plane wrapped)
+    for (int a = 0; a < dims; ++a) parts_->fill(u[a]);
+    parts_->fill(p);
+  }
   stats.seconds_projection += seconds_since(t0);
   ++stats.stages;
 }
@@ -270,10 +297,14 @@ StepStats NavierStokesSolver::step(const FluidState& from, FluidState& to, const
     stage(to.p, phi_of(1), to.u, to.p, to.phi[1], from.u, t, u_half_, t + 0.5 * dt, dt, 0.5, f, stats, 1);
   }
   to.t = t + dt;
-  for (int a = 0; a < grid_.dims; ++a)
-    if (!blas::all_finite(to.u[a]))
-      throw NumericalError(Cause::non_finite, "fluid step at t = " + to_text(t) + ": velocity component " + std::to_string(a) +
-                           " is not finite (NaN or Inf); limit: finite values");
+  int bad = -1;
+  for (int a = grid_.dims - 1; a >= 0; --a)
+    if (!blas::all_finite(to.u[a])) bad = a;
+  if (parts_ && !parts_->all(bad < 0) && bad < 0) bad = 3;  // finite here, not on another process
+  if (bad >= 0)
+    throw NumericalError(Cause::non_finite, "fluid step at t = " + to_text(t) + ": velocity " +
+                         (bad < 3 ? "component " + std::to_string(bad) : std::string("on another process")) +
+                         " is not finite (NaN or Inf); limit: finite values");
   auto t0 = clock_type::now();
   stats.max_divergence = max_divergence(to);
   stats.seconds_other += seconds_since(t0);

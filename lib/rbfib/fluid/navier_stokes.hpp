@@ -23,6 +23,7 @@
 // from this derivation; we use the derived sign (reference/fluid.yaml records the choice).
 //
 // Units (CGS): u cm/s, p dyn/cm^2, f dyn/cm^3, rho g/cm^3, mu poise, t and dt in s.
+#include "rbfib/fluid/decomposition.hpp"
 #include "rbfib/fluid/fourier_solver.hpp"
 #include "rbfib/fluid/helmholtz.hpp"
 #include "rbfib/fluid/mac_operators.hpp"
@@ -86,8 +87,11 @@ struct StepStats {
 class NavierStokesSolver {
  public:
   /// Throws InputError naming the field on non-positive dt, density or viscosity, or a bad grid.
+  /// parts: the grid split among processes (decomposition.hpp); the solver then steps this
+  /// process's part, grid() is the local grid, and the direct solves are the parts' (the Fourier
+  /// path only: InputError otherwise, and on walls with a normal velocity).
   NavierStokesSolver(const MacGrid& grid, FluidParameters fluid, NavierStokesOptions options,
-                     BoundaryVelocity boundary = {});
+                     BoundaryVelocity boundary = {}, std::shared_ptr<const FluidDecomposition> parts = nullptr);
 
   /// A state with zero velocity, pressure and phi at time t.
   FluidState zero_state(double t = 0.0) const;
@@ -139,17 +143,20 @@ class NavierStokesSolver {
   BoundaryVelocity boundary_;
   MacOperators ops_;
   bool fourier_ = false;
+  std::shared_ptr<const FluidDecomposition> parts_;
   /// The velocity systems of one step size (multigrid or Fourier, per component).
   struct HelmholtzSet {
     double dt = 0;
     std::array<std::unique_ptr<HelmholtzSolver>, 3> multigrid;
-    std::array<std::unique_ptr<FourierSolver>, 3> fourier;
+    std::array<DirectSolve, 3> fourier;
   };
+  DirectSolve make_fourier(const Box& box, Correction correction, double alpha, double beta, const std::string& name) const;
   HelmholtzSet make_helmholtz(double dt) const;
   std::vector<HelmholtzSet> helmholtz_;  // one per step size used; current_ is in use
   std::size_t current_ = 0;
   std::unique_ptr<PoissonSolver> poisson_;
-  std::unique_ptr<FourierSolver> fourier_poisson_;
+  DirectSolve fourier_poisson_;
+  std::vector<StaggeredLaplacian> fourier_laplacians_;  // Fourier path: per component, then the scalar box
   const StaggeredLaplacian& velocity_laplacian(int a) const;
   const StaggeredLaplacian& pressure_laplacian() const;
   mutable std::vector<std::pair<double, VelocityBoundaryData>> cache_;

@@ -1,0 +1,95 @@
+#include "rbfib/dist/slab_fluid.hpp"
+
+#include "rbfib/core/error.hpp"
+
+#include <thrust/copy.h>
+#include <thrust/functional.h>
+#include <thrust/transform_reduce.h>
+
+#include <cmath>
+
+namespace rbfib::dist {
+
+SlabFluid::SlabFluid(const MacGrid& grid, const Comm& comm, int ghosts)
+    : grid_(grid), local_(grid), comm_(comm), slabs_(grid.scalar(), comm, "grid"), ghosts_(ghosts) {
+  require(grid.dims == 3 && grid.periodic(0) && grid.periodic(2), "grid.boundary", "walls across x or z",
+          "a fluid on several ranks needs x and z periodic (the Fourier solvers); walls across x or z need the "
+          "multigrid path, which runs on one process");
+  halo_ = std::make_unique<Halo>(slabs_, ghosts, "grid.cells.z");
+  const double h = grid.h(2);
+  local_.cells[2] = slabs_.planes() + 2 * ghosts;
+  local_.length[2] = local_.cells[2] * h;
+  local_.origin[2] = grid.origin[2] + (slabs_.first() - ghosts) * h;
+}
+
+Box SlabFluid::global_box(const Box& local_box) const {
+  Box b = local_box;
+  b.axes[2].cells = grid_.cells[2];
+  b.axes[2].length = grid_.length[2];
+  b.axes[2].origin = grid_.origin[2];
+  return b;
+}
+
+namespace {
+/// A distributed solver with the slabs of its own box (the solver keeps a reference to them).
+struct SlabSolve {
+  Slabs slabs;
+  FourierSolver solver;
+  mutable dvec owned_b, owned_x;
+  SlabSolve(const Box& box, const Comm& comm, Correction c, double alpha, double beta, const std::string& name)
+      : slabs(box, comm, name), solver(slabs, c, alpha, beta, name) {}
+};
+}  // namespace
+
+DirectSolve SlabFluid::fourier(const Box& local_box, Correction correction, double alpha, double beta,
+                               const std::string& name) const {
+  auto s = std::make_shared<SlabSolve>(global_box(local_box), comm_, correction, alpha, beta, name);
+  const index_t ps = s->slabs.plane_size(), offset = ghosts_ * ps, owned = s->slabs.local_size();
+  const index_t extended = owned + 2 * offset;
+  const Halo* halo = halo_.get();
+  return [s, offset, owned, extended, halo, name](const dvec& b, dvec& x) {
+    require(static_cast<index_t>(b.size()) == extended, name + ": right-hand side size", b.size(),
+            "must be this rank's extended slab, " + to_text(extended));
+    s->owned_b.resize(static_cast<std::size_t>(owned));
+    thrust::copy(b.begin() + offset, b.begin() + offset + owned, s->owned_b.begin());
+    s->solver.solve(s->owned_b, s->owned_x);
+    x.resize(static_cast<std::size_t>(extended));
+    thrust::copy(s->owned_x.begin(), s->owned_x.end(), x.begin() + offset);
+    halo->fill(x);
+  };
+}
+
+double SlabFluid::max_abs(const dvec& v) const {
+  const index_t planes = slabs_.planes() + 2 * ghosts_;
+  require(static_cast<index_t>(v.size()) % planes == 0, "SlabFluid::max_abs: field size", v.size(),
+          "must be whole planes of the extended slab");
+  const index_t ps = static_cast<index_t>(v.size()) / planes;
+  const auto begin = v.begin() + ghosts_ * ps, end = begin + slabs_.planes() * ps;
+  const double m = thrust::transform_reduce(begin, end, [] RBFIB_HD (double a) { return std::abs(a); }, 0.0,
+                                            thrust::maximum<double>());
+  return comm_.max(m);
+}
+
+dvec SlabFluid::extend(const Box& local_box, const dvec& global) const {
+  const Box whole = global_box(local_box);
+  require(static_cast<index_t>(global.size()) == whole.size(), "SlabFluid::extend: field size", global.size(),
+          "must be the whole box's " + to_text(whole.size()));
+  const index_t ps = index_t(whole.n(0)) * whole.n(1);
+  const int nz = whole.n(2), planes = slabs_.planes() + 2 * ghosts_;
+  host_vector<double> g = global, e(static_cast<std::size_t>(planes * ps));
+  for (int p = 0; p < planes; ++p) {
+    const int z = ((slabs_.first() - ghosts_ + p) % nz + nz) % nz;
+    for (index_t q = 0; q < ps; ++q) e[p * ps + q] = g[z * ps + q];
+  }
+  return dvec(e);
+}
+
+dvec SlabFluid::gather(const Box& local_box, const dvec& local) const {
+  const Slabs whole(global_box(local_box), comm_, "SlabFluid::gather");
+  const index_t offset = ghosts_ * whole.plane_size();
+  require(static_cast<index_t>(local.size()) == whole.local_size() + 2 * offset, "SlabFluid::gather: field size",
+          local.size(), "must be this rank's extended slab");
+  return whole.gather(dvec(local.begin() + offset, local.begin() + offset + whole.local_size()));
+}
+
+}  // namespace rbfib::dist

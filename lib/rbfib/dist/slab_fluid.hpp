@@ -1,0 +1,52 @@
+#pragma once
+// The fluid of a MAC grid split among ranks in slabs along z (fluid/decomposition.hpp): each rank
+// steps its planes with `ghosts` planes of halo on each side, the direct solves are the
+// distributed Fourier solver's (dist/fourier_solver.hpp), and the reductions are over all ranks.
+// Give it to NavierStokesSolver and the one-process code steps a rank's slab unchanged.
+//
+// Every box of the grid (the three velocity components, the scalars) is periodic along z with n_z
+// unknowns, so one split of the planes serves them all.
+#include "rbfib/dist/fourier_solver.hpp"
+#include "rbfib/fluid/decomposition.hpp"
+
+#include <memory>
+
+namespace rbfib::dist {
+
+class SlabFluid : public FluidDecomposition {
+ public:
+  /// Planes of halo the Navier-Stokes stencils need: advection reaches two cells (eq. 2.5).
+  static constexpr int fluid_reach = 2;
+
+  /// Throws InputError naming the field when the grid is not periodic along x and z, or when a
+  /// rank would own fewer planes than the halo (too many ranks for n_z).
+  SlabFluid(const MacGrid& grid, const Comm& comm, int ghosts = fluid_reach);
+
+  const MacGrid& local_grid() const override { return local_; }
+  void fill(dvec& field) const override { halo_->fill(field); }
+  DirectSolve fourier(const Box& local_box, Correction correction, double alpha, double beta,
+                      const std::string& name) const override;
+  double max_abs(const dvec& v) const override;
+  bool all(bool ok) const override { return comm_.all(ok); }
+
+  const MacGrid& grid() const { return grid_; }
+  const Comm& comm() const { return comm_; }
+  const Slabs& slabs() const { return slabs_; }
+  int ghosts() const { return ghosts_; }
+  /// The whole grid's box of which `local_box` (a box of the local grid) is this rank's part.
+  Box global_box(const Box& local_box) const;
+
+  /// This rank's part, with filled ghosts, of a field given whole on every rank.
+  dvec extend(const Box& local_box, const dvec& global) const;
+  /// The whole field on every rank from each rank's part (collective).
+  dvec gather(const Box& local_box, const dvec& local) const;
+
+ private:
+  MacGrid grid_, local_;
+  Comm comm_;
+  Slabs slabs_;
+  int ghosts_;
+  std::unique_ptr<Halo> halo_;
+};
+
+}  // namespace rbfib::dist

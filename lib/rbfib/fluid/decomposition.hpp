@@ -1,0 +1,39 @@
+#pragma once
+// A fluid split among processes, as the Navier-Stokes solver sees it (implemented by dist/, which
+// comes after fluid in the module graph; the solver knows only this interface).
+//
+// Each process steps its own part of the grid extended by ghost planes along the split axis: the
+// local grid. Every field the solver keeps has its ghosts filled from their owners on exit, so the
+// stencils (reach <= ghosts) give the right values on the owned planes; what they give on ghost
+// planes is never read before the next fill. The direct solves read the owned planes of their
+// right-hand side and return a filled solution.
+#include "rbfib/fluid/laplacian.hpp"
+#include "rbfib/grid/mac.hpp"
+
+#include <functional>
+#include <string>
+
+namespace rbfib {
+
+/// x = A^{-1} b for one of the fluid's operators (b and x on the local grid; x is resized).
+using DirectSolve = std::function<void(const dvec& b, dvec& x)>;
+
+class FluidDecomposition {
+ public:
+  virtual ~FluidDecomposition() = default;
+
+  /// The grid this process steps: its part with the ghost planes.
+  virtual const MacGrid& local_grid() const = 0;
+  /// Fills the ghost planes of a field of the local grid (any of its boxes) from their owners.
+  virtual void fill(dvec& field) const = 0;
+  /// The direct (Fourier) solve of alpha I~ + beta L on the global box of which `local_box` is this
+  /// process's part; its solution comes back filled.
+  virtual DirectSolve fourier(const Box& local_box, Correction correction, double alpha, double beta,
+                              const std::string& name) const = 0;
+  /// max |v| over the owned entries of every process (v a field of the local grid).
+  virtual double max_abs(const dvec& v) const = 0;
+  /// true on every process when ok is true on every process.
+  virtual bool all(bool ok) const = 0;
+};
+
+}  // namespace rbfib
