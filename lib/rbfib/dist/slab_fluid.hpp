@@ -33,6 +33,7 @@ class SlabFluid : public FluidDecomposition {
   const Comm& comm() const { return comm_; }
   const Slabs& slabs() const { return slabs_; }
   int ghosts() const { return ghosts_; }
+  const Halo& halo() const { return *halo_; }
   /// The whole grid's box of which `local_box` (a box of the local grid) is this rank's part.
   Box global_box(const Box& local_box) const;
 
