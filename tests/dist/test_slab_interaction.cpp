@@ -4,7 +4,7 @@
 // its owner's planes), points near the periodic seam z = 0 included. Spread forces and
 // interpolated velocities equal the whole grid's up to the order of summation: at most 1e-13 of
 // the largest value (both sum at most 4^3 products per unknown or point). A point beyond the halo
-// is refused on every rank.
+// is refused on every rank, with the message of the rank that holds it.
 #include "rbfib/core/error.hpp"
 #include "rbfib/dist/slab_interaction.hpp"
 
@@ -76,8 +76,7 @@ TEST(SlabInteraction, SpreadsAndInterpolatesAsTheWholeGrid) {
   // Spreading: the owned planes of every rank, gathered, against the whole grid's field.
   std::array<dvec, 3> f_one, f_many;
   one.spread(X_all, F_all, f_one);
-  dvec X = mine(p, p.X, world.rank());
-  slab.localize(X);
+  const dvec X = mine(p, p.X, world.rank());
   slab.spread(X, mine(p, F, world.rank()), f_many);
   double worst = 0.0, scale = 0.0;
   for (int c = 0; c < 3; ++c) {
@@ -108,23 +107,29 @@ TEST(SlabInteraction, SpreadsAndInterpolatesAsTheWholeGrid) {
   EXPECT_LE(world.max(u_worst), 1e-13 * world.max(u_scale)) << world.size() << " ranks";
 }
 
-TEST(SlabInteraction, RefusesPointsBeyondTheHalo) {
+TEST(SlabInteraction, RefusesPointsBeyondTheHaloOnEveryRank) {
   const Comm world;
   const MacGrid grid = make_mac_grid(3, {8, 10, 20}, {0.8, 1.0, 2.0}, {MB::periodic, MB::dirichlet, MB::periodic});
   const SlabFluid fluid(grid, world, 4);
   SlabInteraction slab(fluid, ib::Kernel::peskin4);
-  // Every rank takes a point 4.5 planes above its own top plane, beyond what 4 ghost planes allow
-  // with the kernel's support (3 planes); on one rank the slab is the whole period and every
-  // point has an image inside it.
+  // Rank 0 alone takes a point 4.5 planes above its top plane, beyond what 4 ghost planes allow
+  // with the kernel's support (3 planes); the others take none. On one rank the slab is the whole
+  // period and every point has an image inside it.
   const double h = grid.h(2);
-  const double z = (fluid.slabs().first() + fluid.slabs().planes() + 4.5) * h;
-  host_vector<double> x(3);
-  x[0] = 0.4, x[1] = 0.5, x[2] = z;
-  dvec X = x;
+  host_vector<double> x;
+  if (world.rank() == 0) x = host_vector<double>{0.4, 0.5, (fluid.slabs().planes() + 4.5) * h};
+  const dvec X = x, F(x.size(), 1.0);
+  std::array<dvec, 3> f;
   if (world.size() == 1) {
-    EXPECT_NO_THROW(slab.localize(X));  // one rank: the slab is the whole period
+    EXPECT_NO_THROW(slab.spread(X, F, f));
   } else {
-    EXPECT_THROW(slab.localize(X), InputError);
+    try {
+      slab.spread(X, F, f);
+      ADD_FAILURE() << "a point beyond the halo was spread";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("X[0].z"), std::string::npos) << e.what();  // rank 0's message on every rank
+      EXPECT_NE(std::string(e.what()).find("more ghost planes are needed"), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -54,4 +54,42 @@ index_t Comm::sum(index_t v) const {
 }
 bool Comm::all(bool ok) const { return reduce(comm_, ok ? 1 : 0, MPI_INT, MPI_LAND) != 0; }
 
+namespace {
+void broadcast(MPI_Comm comm, int root, std::string& s) {
+  int length = static_cast<int>(s.size());
+  check(MPI_Bcast(&length, 1, MPI_INT, root, comm), "MPI_Bcast");
+  s.resize(static_cast<std::size_t>(length));
+  check(MPI_Bcast(s.data(), length, MPI_CHAR, root, comm), "MPI_Bcast");
+}
+}  // namespace
+
+void Comm::agree(std::exception_ptr error) const {
+  const int failed = reduce(comm_, error ? rank_ : size_, MPI_INT, MPI_MIN);
+  if (failed == size_) return;
+  int what[2] = {2, 0};  // kind (0 input, 1 numerical, 2 other), cause
+  std::string field, text;
+  if (rank_ == failed) {
+    try {
+      std::rethrow_exception(error);
+    } catch (const InputError& e) {
+      what[0] = 0, field = e.field(), text = e.what();
+    } catch (const NumericalError& e) {
+      what[0] = 1, what[1] = int(e.cause()), text = e.what();
+    } catch (const std::exception& e) {
+      text = e.what();
+    }
+  }
+  check(MPI_Bcast(what, 2, MPI_INT, failed, comm_), "MPI_Bcast");
+  broadcast(comm_, failed, field);
+  broadcast(comm_, failed, text);
+  if (rank_ == failed) std::rethrow_exception(error);
+  if (what[0] == 0) {  // "field = value: why"
+    const std::string rest = text.size() > field.size() + 3 ? text.substr(field.size() + 3) : text;
+    const std::size_t colon = rest.find(": ");
+    throw InputError(field, rest.substr(0, colon), colon == std::string::npos ? "" : rest.substr(colon + 2));
+  }
+  if (what[0] == 1) throw NumericalError(Cause(what[1]), text);
+  throw std::runtime_error(text);
+}
+
 }  // namespace rbfib::dist

@@ -7,6 +7,7 @@
 
 #include <mpi.h>
 
+#include <exception>
 #include <string>
 
 namespace rbfib::dist {
@@ -34,6 +35,11 @@ class Comm {
   index_t sum(index_t v) const;
   /// true on every rank when `ok` is true on every rank (a stop agreed by all).
   bool all(bool ok) const;
+  /// A failure on some ranks becomes the same failure on all: returns when `error` is null on
+  /// every rank, else every rank throws the error of the lowest rank that failed (InputError,
+  /// NumericalError with its cause, or std::runtime_error, with that rank's message). Call it
+  /// before the next collective, so that no rank is left waiting in one.
+  void agree(std::exception_ptr error) const;
 
  private:
   MPI_Comm comm_;

@@ -4,6 +4,7 @@
 
 #include <thrust/copy.h>
 #include <thrust/functional.h>
+#include <thrust/inner_product.h>
 #include <thrust/transform_reduce.h>
 
 #include <cmath>
@@ -59,12 +60,26 @@ DirectSolve SlabFluid::fourier(const Box& local_box, Correction correction, doub
   };
 }
 
-double SlabFluid::max_abs(const dvec& v) const {
-  const index_t planes = slabs_.planes() + 2 * ghosts_;
-  require(static_cast<index_t>(v.size()) % planes == 0, "SlabFluid::max_abs: field size", v.size(),
+namespace {
+/// The owned entries of a field of the extended slab: [begin, end).
+std::pair<index_t, index_t> owned_range(const dvec& v, int planes, int ghosts, const char* what) {
+  const index_t all = planes + 2 * ghosts;
+  require(static_cast<index_t>(v.size()) % all == 0, std::string(what) + ": field size", v.size(),
           "must be whole planes of the extended slab");
-  const index_t ps = static_cast<index_t>(v.size()) / planes;
-  const auto begin = v.begin() + ghosts_ * ps, end = begin + slabs_.planes() * ps;
+  const index_t ps = static_cast<index_t>(v.size()) / all;
+  return {ghosts * ps, (ghosts + planes) * ps};
+}
+}  // namespace
+
+double SlabFluid::dot(const dvec& a, const dvec& b) const {
+  const auto [lo, hi] = owned_range(a, slabs_.planes(), ghosts_, "SlabFluid::dot");
+  require(a.size() == b.size(), "SlabFluid::dot: field sizes", b.size(), "must be equal");
+  return comm_.sum(thrust::inner_product(a.begin() + lo, a.begin() + hi, b.begin() + lo, 0.0));
+}
+
+double SlabFluid::max_abs(const dvec& v) const {
+  const auto [lo, hi] = owned_range(v, slabs_.planes(), ghosts_, "SlabFluid::max_abs");
+  const auto begin = v.begin() + lo, end = v.begin() + hi;
   const double m = thrust::transform_reduce(begin, end, [] RBFIB_HD (double a) { return std::abs(a); }, 0.0,
                                             thrust::maximum<double>());
   return comm_.max(m);

@@ -24,10 +24,16 @@ class SlabFluid : public FluidDecomposition {
 
   const MacGrid& local_grid() const override { return local_; }
   void fill(dvec& field) const override { halo_->fill(field); }
+  void sum_ghosts(dvec& field) const override { halo_->sum(field); }
+  int split_axis() const override { return 2; }
+  int split_cells() const override { return grid_.cells[2]; }
   DirectSolve fourier(const Box& local_box, Correction correction, double alpha, double beta,
                       const std::string& name) const override;
   double max_abs(const dvec& v) const override;
+  double dot(const dvec& a, const dvec& b) const override;
+  double sum(double v) const override { return comm_.sum(v); }
   bool all(bool ok) const override { return comm_.all(ok); }
+  void agree(std::exception_ptr error) const override { comm_.agree(error); }
 
   const MacGrid& grid() const { return grid_; }
   const Comm& comm() const { return comm_; }

@@ -8,8 +8,9 @@
 //   interpolation: each rank fills the velocity's ghost planes, then interpolates locally.
 // Both equal the one-process algorithms on the whole grid up to the order of summation.
 //
-// Along z a point is used at its periodic image nearest the rank's slab (localize): a cell that
-// straddles z = 0 spreads into the planes on both sides of the seam.
+// The slab is a window of the periodic z axis (Interaction::set_window): each point is used at
+// its image nearest the slab, so a cell that straddles z = 0 spreads into the planes on both
+// sides of the seam; a point whose support leaves the slab is refused, on every rank.
 #include "rbfib/dist/slab_fluid.hpp"
 #include "rbfib/ib/interaction.hpp"
 
@@ -23,13 +24,9 @@ class SlabInteraction {
   /// the rank that owns it: its reach plus the kernel's half support, plus one for the staggering.
   static int ghosts_needed(double beyond, double h, ib::Kernel kernel);
 
-  /// Moves each point to its z-image nearest this rank's slab (X[2n + k] by multiples of L_z).
-  /// Throws InputError on every rank (agreed) when some point's kernel support leaves a rank's
-  /// extended slab, naming the point and the ghost planes it would need.
-  void localize(dvec& X) const;
-
-  /// U = I u at this rank's points (localized); u: the local grid's velocity, ghosts filled.
-  void interpolate(const dvec& X, const std::array<dvec, 3>& u, dvec& U) { ib_.interpolate(X, u, U); }
+  /// U = I u at this rank's points; u: the local grid's velocity, ghosts filled (collective: a
+  /// point beyond the slab throws InputError on every rank).
+  void interpolate(const dvec& X, const std::array<dvec, 3>& u, dvec& U);
   /// f = S F on this rank's planes (collective: the halo sum); the ghost planes of f are zero.
   void spread(const dvec& X, const dvec& F, std::array<dvec, 3>& f);
 

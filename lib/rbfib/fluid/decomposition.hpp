@@ -1,6 +1,6 @@
 #pragma once
-// A fluid split among processes, as the Navier-Stokes solver sees it (implemented by dist/, which
-// comes after fluid in the module graph; the solver knows only this interface).
+// A fluid split among processes, as the Navier-Stokes solver and the coupled step see it
+// (implemented by dist/, which comes after sim in the module graph; they know only this interface).
 //
 // Each process steps its own part of the grid extended by ghost planes along the split axis: the
 // local grid. Every field the solver keeps has its ghosts filled from their owners on exit, so the
@@ -10,6 +10,7 @@
 #include "rbfib/fluid/laplacian.hpp"
 #include "rbfib/grid/mac.hpp"
 
+#include <exception>
 #include <functional>
 #include <string>
 
@@ -26,14 +27,28 @@ class FluidDecomposition {
   virtual const MacGrid& local_grid() const = 0;
   /// Fills the ghost planes of a field of the local grid (any of its boxes) from their owners.
   virtual void fill(dvec& field) const = 0;
+  /// Adds the ghost planes of a field of the local grid into the planes their owners hold, then
+  /// zeroes them (spreading's counterpart of fill).
+  virtual void sum_ghosts(dvec& field) const = 0;
+  /// The split axis and its number of cells on the whole grid: the local grid is a window of it
+  /// (ib::Interaction::set_window).
+  virtual int split_axis() const = 0;
+  virtual int split_cells() const = 0;
   /// The direct (Fourier) solve of alpha I~ + beta L on the global box of which `local_box` is this
   /// process's part; its solution comes back filled.
   virtual DirectSolve fourier(const Box& local_box, Correction correction, double alpha, double beta,
                               const std::string& name) const = 0;
   /// max |v| over the owned entries of every process (v a field of the local grid).
   virtual double max_abs(const dvec& v) const = 0;
+  /// sum of a_i b_i over the owned entries of every process.
+  virtual double dot(const dvec& a, const dvec& b) const = 0;
+  /// v summed over the processes.
+  virtual double sum(double v) const = 0;
   /// true on every process when ok is true on every process.
   virtual bool all(bool ok) const = 0;
+  /// Returns when `error` is null on every process; else every process throws the error of the
+  /// lowest that failed (call it before the next collective step, so that none is left waiting).
+  virtual void agree(std::exception_ptr error) const = 0;
 };
 
 }  // namespace rbfib

@@ -14,8 +14,8 @@ const VectorField& FluidStep::midpoint_velocity() const {
 // ---- Navier-Stokes --------------------------------------------------------------------------
 
 NavierStokesStep::NavierStokesStep(const MacGrid& grid, FluidParameters fluid, NavierStokesOptions options,
-                                   BoundaryVelocity boundary)
-    : ns_(grid, fluid, std::move(options), std::move(boundary)) {
+                                   BoundaryVelocity boundary, std::shared_ptr<const FluidDecomposition> parts)
+    : ns_(grid, fluid, std::move(options), std::move(boundary), std::move(parts)) {
   state_[0] = ns_.zero_state(0.0);
 }
 

@@ -40,6 +40,9 @@ class FluidStep {
   /// step(); InputError for a fluid without one (only Peskin's two-stage scheme has it).
   virtual const VectorField& midpoint_velocity() const;
   virtual bool has_midpoint_velocity() const { return false; }
+  /// The split among processes this fluid steps one part of (decomposition.hpp); null for a
+  /// fluid on one process.
+  virtual const FluidDecomposition* parts() const { return nullptr; }
 
   /// The state at t^n (velocity, pressure, lagged corrections, time).
   const FluidState& state() const { return state_[current_]; }
@@ -56,7 +59,9 @@ class FluidStep {
 
 class NavierStokesStep final : public FluidStep {
  public:
-  NavierStokesStep(const MacGrid& grid, FluidParameters fluid, NavierStokesOptions options, BoundaryVelocity boundary);
+  /// parts: the grid split among processes (the solver then steps this process's part).
+  NavierStokesStep(const MacGrid& grid, FluidParameters fluid, NavierStokesOptions options, BoundaryVelocity boundary,
+                   std::shared_ptr<const FluidDecomposition> parts = nullptr);
   std::string name() const override;
   const MacGrid& grid() const override { return ns_.grid(); }
   const MacOperators& operators() const override { return ns_.operators(); }
@@ -67,6 +72,7 @@ class NavierStokesStep final : public FluidStep {
   StepStats step(const VectorField* f) override { return ns_.step(state(), state_[1 - current_], f); }
   const VectorField& midpoint_velocity() const override;
   bool has_midpoint_velocity() const override { return ns_.options().integrator == TimeIntegrator::peskin_two_stage; }
+  const FluidDecomposition* parts() const override { return ns_.parts(); }
   const NavierStokesSolver& solver() const { return ns_; }
 
  private:

@@ -127,6 +127,8 @@ class NavierStokesSolver {
   const NavierStokesOptions& options() const { return options_; }
   /// Whether the stages use the direct Fourier solvers (else multigrid-preconditioned CG).
   bool fourier() const { return fourier_; }
+  /// The split this solver steps one part of; null on one process.
+  const FluidDecomposition* parts() const { return parts_.get(); }
   /// The iterative solvers; only on the multigrid path (InputError otherwise).
   const HelmholtzSolver& helmholtz(int a) const;
   const PoissonSolver& poisson() const;

@@ -37,10 +37,20 @@ struct GridAxis {
   double origin = 0.0, length = 1.0, h = 1.0, inv_h = 1.0, g = 0.5;
   int key_offset = 0, key_extent = 1;
 
-  /// Position in index units, u = (x - origin)/h - g, wrapped into [0, N] on periodic axes.
+  /// A window of a longer periodic axis (a process's slab with its ghost planes, dist/): the
+  /// period of that axis in cells; 0 for an axis that is its own period or a wall.
+  int period = 0;
+
+  /// Position in index units, u = (x - origin)/h - g, wrapped into [0, N] on periodic axes; on a
+  /// window, the image nearest the window's middle, u in [(N - period)/2, (N + period)/2).
   RBFIB_HD double index_position(double x) const {
     double u = (x - origin) * inv_h - g;
-    if (periodic && (u < 0.0 || u >= cells)) u -= cells * floor(u / cells);
+    if (period > 0) {
+      const double c = 0.5 * (cells - period);
+      if (u < c || u >= c + period) u -= period * floor((u - c) / period);
+    } else if (periodic && (u < 0.0 || u >= cells)) {
+      u -= cells * floor(u / cells);
+    }
     return u;
   }
   /// The grid indexing function # along this axis: unknown index of cell i, or -1 for none.

@@ -128,7 +128,7 @@ void Interaction::check_points(const dvec& X) const {
 void Interaction::check_points(const double* X, index_t n) const {
   require(n < index_t(1) << 31, "number of points", n, "at most 2^31 - 1 points");
   if (n == 0) return;
-  detail::BadCoordinate bad{{grids_[0].axis[0], grids_[0].axis[1], grids_[0].axis[2]}, X, n};
+  detail::BadCoordinate bad{{grids_[0].axis[0], grids_[0].axis[1], grids_[0].axis[2]}, X, n, support_};
   const index_t first = thrust::transform_reduce(thrust::counting_iterator<index_t>(0),
                                                  thrust::counting_iterator<index_t>(3 * n), bad, 3 * n, detail::MinIndex{});
   if (first == 3 * n) return;
@@ -139,11 +139,22 @@ void Interaction::check_points(const double* X, index_t n) const {
   static const char* names[3] = {"x", "y", "z"};
   const std::string field = std::string("X[") + std::to_string(k) + "]." + names[d];
   if (!std::isfinite(x)) throw InputError(field, to_text(x), "point coordinates must be finite");
+  if (a.period > 0)
+    throw InputError(field, to_text(x), "lies beyond this process's slab [" + to_text(a.origin) + ", " +
+                                            to_text(a.origin + a.length) + "] (its ghost planes included) less the "
+                                            "kernel's support: more ghost planes are needed");
   if (a.periodic)
     throw InputError(field, to_text(x), "lies more than 2^20 periods from the periodic box [" + to_text(a.origin) +
                                             ", " + to_text(a.origin + a.length) + "]");
   throw InputError(field, to_text(x), "lies outside the domain [" + to_text(a.origin) + ", " +
                                           to_text(a.origin + a.length) + "] of a wall (non-periodic) axis");
+}
+
+void Interaction::set_window(int d, int period) {
+  require(d >= 0 && d < 3, "window axis", d, "must be 0, 1 or 2");
+  require(grids_[0].axis[d].periodic && period >= 2 * support_, "window period (cells)", period,
+          "must belong to a periodic axis and exceed twice the kernel's support");
+  for (auto& g : grids_) g.axis[d].period = period;
 }
 
 void Interaction::check_fields(const std::array<dvec, 3>& u) const {

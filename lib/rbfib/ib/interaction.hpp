@@ -103,8 +103,14 @@ class Interaction {
   /// sets spread into one field without a zeroing and a sum per set.
   void spread(const SortedPoints& s, const double* F, std::array<dvec, 3>& f, bool add = false);
 
+  /// Makes periodic axis d a window of a longer periodic axis of `period` cells (a process's slab
+  /// of a split grid, with its ghost planes): each point is then used at its image nearest the
+  /// window's middle, and check_points refuses points whose support leaves the window.
+  void set_window(int d, int period);
+
   /// Throws InputError naming the point and axis if some coordinate is not finite, or lies outside
-  /// [origin, origin + L] along a wall axis. Called by interpolate, spread and sort.
+  /// [origin, origin + L] along a wall axis (or its support outside a window). Called by
+  /// interpolate, spread and sort.
   void check_points(const dvec& X) const;
   void check_points(const double* X, index_t n) const;
 

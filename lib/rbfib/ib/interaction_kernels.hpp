@@ -562,13 +562,19 @@ struct BadCoordinate {
   GridAxis axis[3];
   const double* X;
   index_t n;
+  int support;
   RBFIB_HD index_t operator()(index_t e) const {
     const int d = int(e / n);
     const double x = X[e];
     const GridAxis& a = axis[d];
     const bool finite = x == x && x - x == 0.0;
-    const bool inside = a.periodic ? (x - a.origin <= periodic_reach * a.length && a.origin - x <= periodic_reach * a.length)
-                                   : (x >= a.origin && x <= a.origin + a.length);
+    // On a window the support must stay inside it: cells floor(u) - s/2 + 1 .. floor(u) + s/2 for
+    // an even support, round(u) -+ (s - 1)/2 for an odd one.
+    const int half = support / 2;
+    const bool inside =
+        a.period > 0 ? (finite && a.index_position(x) >= half && a.index_position(x) <= a.cells - half - 1)
+        : a.periodic ? (x - a.origin <= periodic_reach * a.length && a.origin - x <= periodic_reach * a.length)
+                     : (x >= a.origin && x <= a.origin + a.length);
     return (finite && inside) ? 3 * n : e;
   }
 };

@@ -45,6 +45,9 @@ ImmersedBoundary::ImmersedBoundary(std::unique_ptr<FluidStep> fluid, IbOptions i
       ib_(component_boxes(fluid_->operators()), ib.kernel),
       options_(std::move(ib)) {
   require(fluid_->grid().dims == 3, "grid.dims", fluid_->grid().dims, "the immersed-boundary step needs a 3D grid");
+  // On one part of a split fluid, the grid is a window of the split axis: each point at its image
+  // nearest this process's part.
+  if (const FluidDecomposition* parts = fluid_->parts()) ib_.set_window(parts->split_axis(), parts->split_cells());
   require(options_.coupling != Coupling::midpoint || fluid_->has_midpoint_velocity(), "ib.coupling", to_string(options_.coupling),
           "needs Peskin's two-stage fluid scheme (its midpoint velocity), not " + fluid_->name());
   if (!options_.body_force_density[0].empty())
@@ -153,6 +156,8 @@ IbStepReport ImmersedBoundary::step() {
 index_t ImmersedBoundary::add(cells::Batch batch) { return keep(std::make_unique<CellBatchSet>(std::move(batch)), batches_); }
 
 index_t ImmersedBoundary::add(TetheredPoints p) {
+  require(!p.frame || !fluid_->parts(), "tethered points '" + p.name + "': frame", "true",
+          "a frame (Chapter 3's capillary) runs on one process only");
   if (p.frame)
     for (const TetheredPointSet* q : points_)
       require(!q->points().frame, "tethered points '" + p.name + "': frame", "true",
@@ -166,6 +171,7 @@ index_t ImmersedBoundary::add(LdsmShell shell) { return keep(std::make_unique<Ld
 index_t ImmersedBoundary::add(HeldWall wall) {
   const std::string field = "held wall '" + wall.name + "'";
   require(held_.empty(), field + ": held walls", held_.size() + 1, "must be at most one");
+  require(!fluid_->parts(), field + ": processes", "several", "a held wall runs on one process only");
   require(!fluid_->has_midpoint_velocity(), field + ": fluid", fluid_->name(),
           "must be affine in its force (not Peskin's two-stage scheme, whose advection uses the half step's velocity)");
   return keep(std::make_unique<HeldWallSet>(std::move(wall)), held_);
@@ -173,6 +179,7 @@ index_t ImmersedBoundary::add(HeldWall wall) {
 
 index_t ImmersedBoundary::add(Cortex cortex, const LagrangianSet& membrane) {
   const std::string field = "cortex '" + cortex.name + "'";
+  require(!fluid_->parts(), field + ": processes", "several", "a cortex runs on one process only");
   require(options_.coupling == Coupling::forward_euler, field + ": coupling", to_string(options_.coupling),
           "must be forward_euler (Chapter 3's update, Sec. 3.3: the cortex's forces act at X^n)");
   bool ours = false;
@@ -198,32 +205,58 @@ IbStepReport ImmersedBoundary::attempt() {
   // Keep X^n (and U): the whole Lagrangian state is restored on failure; the fluid's next state
   // goes into its other buffer and is accepted only at the end.
   for_each_set([](LagrangianSet& s) { s.save(); });
+  const FluidDecomposition* parts = fluid_->parts();
+  // On a split fluid, a failure of this process's sets becomes every process's failure before the
+  // next exchange (every process then restores and reports the same error).
+  auto agreed = [parts](auto&& phase) {
+    if (!parts) return phase();
+    std::exception_ptr error;
+    try {
+      phase();
+    } catch (...) {
+      error = std::current_exception();
+    }
+    parts->agree(error);
+  };
   try {
     auto t0 = clock_type::now();
     // (a) U^n = I u^n at X^n; (b) X* = X^n + dt U^n (midpoint: X^{n+1/2} = X^n + dt/2 U^n;
     // forward Euler: neither, the forces act at X^n).
-    for_each_set([&](LagrangianSet& s) {
-      s.locate(ib_);
-      if (coupling == Coupling::forward_euler) return;
-      s.interpolate_start(ib_, fluid_->state().u);
-      s.predict(coupling == Coupling::midpoint ? 0.5 * dt : dt);
+    agreed([&] {
+      for_each_set([&](LagrangianSet& s) {
+        s.locate(ib_);
+        if (coupling == Coupling::forward_euler) return;
+        s.interpolate_start(ib_, fluid_->state().u);
+        s.predict(coupling == Coupling::midpoint ? 0.5 * dt : dt);
+      });
+      r.seconds_interpolation += seconds_since(t0);
+      // (c) F^{n+1} at X* (sample sites), with U^n for dissipation.
+      for_each_set([&](LagrangianSet& s) {
+        r.elastic_energy += s.compute_force();
+        r.seconds_force_products += s.seconds_force_products();
+      });
     });
-    r.seconds_interpolation += seconds_since(t0);
-    // (c) F^{n+1} at X* (sample sites), with U^n for dissipation.
-    for_each_set([&](LagrangianSet& s) {
-      r.elastic_energy += s.compute_force();
-      r.seconds_force_products += s.seconds_force_products();
-    });
+    if (parts) r.elastic_energy = parts->sum(r.elastic_energy);
     r.seconds_forces = seconds_since(t0);
     // (d) f^{n+1} = S F^{n+1} from where the forces act, summed over the sets, plus the body force.
+    // A split fluid: the ghost planes summed into their owners before the body force is added.
     const MacOperators& ops = fluid_->operators();
-    for (int a = 0; a < 3; ++a) f_[a].assign(static_cast<std::size_t>(ops.component_box(a).size()), options_.body_force[a]);
-    for_each_set([&](LagrangianSet& s) { s.spread(ib_, options_.spreading, f_, scratch_); });
+    for (int a = 0; a < 3; ++a)
+      f_[a].assign(static_cast<std::size_t>(ops.component_box(a).size()), parts ? 0.0 : options_.body_force[a]);
+    agreed([&] { for_each_set([&](LagrangianSet& s) { s.spread(ib_, options_.spreading, f_, scratch_); }); });
+    if (parts)
+      for (int a = 0; a < 3; ++a) {
+        parts->sum_ghosts(f_[a]);
+        const double body = options_.body_force[a];
+        double* fa = ptr(f_[a]);
+        if (body != 0.0) for_each_index(index_t(f_[a].size()), [=] RBFIB_HD (index_t i) { fa[i] += body; });
+      }
     for (int a = 0; a < 3; ++a)
       if (!options_.body_force_density[a].empty()) blas::axpy(1.0, options_.body_force_density[a], f_[a]);
     r.seconds_spreading = seconds_since(t0);
     // Eq. 5.4: dt <= (1/4) sqrt(h rho / ||f||_inf).
-    for (int a = 0; a < 3; ++a) r.max_force_density = std::max(r.max_force_density, blas::norm_inf(f_[a]));
+    for (int a = 0; a < 3; ++a)
+      r.max_force_density = std::max(r.max_force_density, parts ? parts->max_abs(f_[a]) : blas::norm_inf(f_[a]));
     const MacGrid& g = fluid_->grid();
     const double h = std::min({g.h(0), g.h(1), g.h(2)});
     r.dt_bound = r.max_force_density > 0 ? 0.25 * std::sqrt(h * fluid_->density() / r.max_force_density)
@@ -249,19 +282,22 @@ IbStepReport ImmersedBoundary::attempt() {
         throw NumericalError(Cause::non_finite, "non-finite fluid velocity (component " + to_text(a) + ")");
     const double cell_volume = g.h(0) * g.h(1) * g.h(2);
     for (int a = 0; a < 3; ++a) {
-      r.max_velocity = std::max(r.max_velocity, blas::norm_inf(next.u[a]));
-      r.kinetic_energy += 0.5 * fluid_->density() * blas::dot(next.u[a], next.u[a]) * cell_volume;
+      r.max_velocity = std::max(r.max_velocity, parts ? parts->max_abs(next.u[a]) : blas::norm_inf(next.u[a]));
+      r.kinetic_energy += 0.5 * fluid_->density() * (parts ? parts->dot(next.u[a], next.u[a]) : blas::dot(next.u[a], next.u[a])) *
+                          cell_volume;
     }
     r.seconds_fluid = seconds_since(t0);  // with its checks and diagnostics
     // (f) U^{n+1} = I u^{n+1} at X^n (midpoint: U^{n+1/2} = I u^{n+1/2} at X^{n+1/2}, sorted once more);
     const bool midpoint = coupling == Coupling::midpoint;
     const VectorField& u_final = midpoint ? fluid_->midpoint_velocity() : next.u;
-    for_each_set([&](LagrangianSet& s) { s.interpolate_end(ib_, u_final, midpoint); });
-    r.seconds_interpolation += seconds_since(t0);
-    // (g) X^{n+1} = X^n + dt (U + u_c), u_c the frame's velocity (eq. 95) or zero.
-    for (const TetheredPointSet* p : points_)
-      if (p->points().frame) r.frame_velocity = p->frame_velocity(dt);
-    for_each_set([&](LagrangianSet& s) { s.update(dt, r.frame_velocity); });
+    agreed([&] {
+      for_each_set([&](LagrangianSet& s) { s.interpolate_end(ib_, u_final, midpoint); });
+      r.seconds_interpolation += seconds_since(t0);
+      // (g) X^{n+1} = X^n + dt (U + u_c), u_c the frame's velocity (eq. 95) or zero.
+      for (const TetheredPointSet* p : points_)
+        if (p->points().frame) r.frame_velocity = p->frame_velocity(dt);
+      for_each_set([&](LagrangianSet& s) { s.update(dt, r.frame_velocity); });
+    });
     r.seconds_update = seconds_since(t0);
   } catch (...) {
     for_each_set([](LagrangianSet& s) { s.restore(); });
