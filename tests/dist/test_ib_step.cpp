@@ -11,6 +11,7 @@
 // counts): measured 3.9e-14 of the largest displacement (0.11 um) on 1 to 4 ranks alike, a unit or
 // two in the last place of the coordinates (about 10 um); bounded here at 1e-10, which a cell
 // stepped on a stale ghost plane or a force lost at a seam exceeds by orders.
+#include "../common/small_cells.hpp"
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/dist/slab_interaction.hpp"
@@ -27,10 +28,7 @@ namespace {
 using MB = MacBoundary;
 const double um = units::um;
 
-const std::shared_ptr<const cells::CellType>& sphere() {
-  static const auto t = cells::skalak_sphere(3 * um, 144, 800);
-  return t;
-}
+using rbfib::testing::small_sphere;
 
 std::vector<cells::Placement> four_cells() {
   std::vector<cells::Placement> p(4);
@@ -64,7 +62,7 @@ TEST(DistributedIbStep, CellsMoveAsOnOneProcess) {
   sim::ImmersedBoundary one(std::make_unique<NavierStokesStep>(grid, fluid, options, BoundaryVelocity{}), ibo);
   sim::ImmersedBoundary many(std::make_unique<NavierStokesStep>(grid, fluid, options, BoundaryVelocity{}, parts), ibo);
   const std::vector<cells::Placement> all = four_cells();
-  one.add(cells::Batch(sphere(), all));
+  one.add(cells::Batch(small_sphere(), all));
   std::vector<int> mine;  // the cells whose centroid lies in this rank's planes
   std::vector<cells::Placement> placed;
   for (int k = 0; k < 4; ++k) {
@@ -75,7 +73,7 @@ TEST(DistributedIbStep, CellsMoveAsOnOneProcess) {
     }
   }
   EXPECT_EQ(world.sum(index_t(mine.size())), 4);
-  if (!placed.empty()) many.add(cells::Batch(sphere(), placed));
+  if (!placed.empty()) many.add(cells::Batch(small_sphere(), placed));
   start_flow(one);
   start_flow(many);
   const std::vector<double> X0 = one.batch(0).positions_host();
@@ -86,7 +84,7 @@ TEST(DistributedIbStep, CellsMoveAsOnOneProcess) {
     r_many = many.step();
   }
   // Each owned cell's data sites against the same cell on one process.
-  const index_t nd = sphere()->n_data();
+  const index_t nd = small_sphere()->n_data();
   const std::vector<double> X1 = one.batch(0).positions_host();
   double moved = 0.0, worst = 0.0;
   for (std::size_t q = 0; q < X1.size(); ++q) moved = std::max(moved, std::abs(X1[q] - X0[q]));
@@ -124,7 +122,7 @@ TEST(DistributedIbStep, ACellBeyondTheHaloStopsEveryRankWithOneMessageAndKeepsTh
   if (world.rank() == 0) {
     cells::Placement p;  // centroid in rank 0's top plane: the cell reaches 3 um above it
     p.center = {8 * um, 8 * um, (parts->slabs().planes() - 0.5) * grid.h(2)};
-    many.add(cells::Batch(sphere(), {p}));
+    many.add(cells::Batch(small_sphere(), {p}));
   }
   try {
     many.step();

@@ -3,6 +3,7 @@
 // spread force, the same run twice is bitwise identical, and failures (a planted NaN, the stopping
 // condition of eq. 5.4) stop the step with a named error and keep the state before it.
 #include "../common/errors.hpp"
+#include "../common/small_cells.hpp"
 #include "rbfib/cells/presets.hpp"
 #include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
@@ -26,11 +27,7 @@ namespace {
 using MB = MacBoundary;
 const double um = units::um;
 
-/// A Skalak sphere type small enough for unit tests: R = 3 um, 144 data and 800 sample sites.
-const std::shared_ptr<const cells::CellType>& sphere() {
-  static const auto t = cells::skalak_sphere(3 * um, 144, 800);
-  return t;
-}
+using rbfib::testing::small_sphere;
 
 /// The 16 um triply periodic box with h = 1 um.
 MacGrid box16() { return make_mac_grid(3, {16, 16, 16}, {16 * um, 16 * um, 16 * um}, {MB::periodic, MB::periodic, MB::periodic}); }
@@ -41,7 +38,7 @@ ImmersedBoundary periodic_box(const std::vector<cells::Placement>& cells) {
   NavierStokesOptions o;
   o.dt = 0.1 * units::us;
   ImmersedBoundary ib(g, FluidParameters{1.0, 0.1 * units::cP}, o, {}, IbOptions{});
-  ib.add(cells::Batch(sphere(), cells));
+  ib.add(cells::Batch(small_sphere(), cells));
   return ib;
 }
 
@@ -76,7 +73,7 @@ TEST(IbStep, CellInAUniformPeriodicFlowIsCarriedWithIt) {
   const int steps = 4;
   for (int n = 0; n < steps; ++n) ib.step();
   const std::vector<double> X = ib.batch(0).positions_host();
-  const index_t nd = sphere()->n_data();
+  const index_t nd = small_sphere()->n_data();
   const double shift = steps * 0.1 * units::us * U;
   // Each update X^n + dt U rounds at eps |X| (|X| <= 11 um): 4 steps, with room, 16 eps |X|.
   const double tol = 16 * 2.2e-16 * 11 * um;
@@ -169,9 +166,9 @@ TEST(IbStep, TetheredPointsArePulledBackToTheirAnchorsAndPushTheFluid) {
     for (int d = 0; d < 3; ++d) anchors[d * n + k] = X[d * n + k] = xyz[d];
     X[k] += 0.2 * um;  // displaced in x
   }
-  TetheredPoints still{"still", anchors, anchors, 2.5, 2.5e-7};
+  TetheredPoints still{"still", anchors, anchors, 2.5, 2.5e-7, false, {}};
   ib.add(still);
-  ib.add(TetheredPoints{"displaced", X, anchors, 2.5, 2.5e-7});
+  ib.add(TetheredPoints{"displaced", X, anchors, 2.5, 2.5e-7, false, {}});
   const double h3 = std::pow(um, 3);
   double impulse = 0;
   for (int s = 0; s < 10; ++s) {
@@ -190,8 +187,8 @@ TEST(IbStep, TetheredPointsArePulledBackToTheirAnchorsAndPushTheFluid) {
   EXPECT_LT(impulse, 0.0);
   EXPECT_NEAR(momentum, impulse, 1e-10 * std::abs(impulse));
   // Bad input is named.
-  EXPECT_THROW(ib.add(TetheredPoints{"bad", X, dvec(3, 0.0), 2.5, 0.0}), InputError);
-  EXPECT_THROW(ib.add(TetheredPoints{"bad", X, anchors, -1.0, 0.0}), InputError);
+  EXPECT_THROW(ib.add(TetheredPoints{"bad", X, dvec(3, 0.0), 2.5, 0.0, false, {}}), InputError);
+  EXPECT_THROW(ib.add(TetheredPoints{"bad", X, anchors, -1.0, 0.0, false, {}}), InputError);
 }
 
 TEST(IbStep, TheSameRunTwiceIsBitwiseIdentical) {
@@ -209,7 +206,7 @@ TEST(IbStep, TheSameRunTwiceIsBitwiseIdentical) {
 TEST(IbStep, APlantedNanStopsTheStepNamingTheCellAndKeepsTheState) {
   ImmersedBoundary ib = periodic_box({at(5, 8, 8), at(11, 8, 8)});
   ib.step();
-  const index_t nd = sphere()->n_data();
+  const index_t nd = small_sphere()->n_data();
   ib.batch(0).state().storage()[(0 * 2 + 1) * nd + 7] = std::nan("");  // column d N + c: x of cell 1, data site 7
   const dvec before = ib.batch(0).state().storage();
   const dvec u_before = ib.fluid_state().u[0];
@@ -241,7 +238,7 @@ TEST(IbStep, TheStoppingConditionFiresWithItsNumbersAndKeepsTheState) {
   ImmersedBoundary ib(g, FluidParameters{1.0, 0.1 * units::cP}, o, {}, IbOptions{});
   cells::Placement p = at(8, 8, 8);
   p.stretch = {2.0, 1.0, 0.5};
-  ib.add(cells::Batch(sphere(), {p}));
+  ib.add(cells::Batch(small_sphere(), {p}));
   const dvec before = ib.batch(0).state().storage();
   const std::string m = testing::message_of<NumericalError>([&] { ib.step(); });
   ASSERT_FALSE(m.empty()) << "no error";
@@ -269,7 +266,7 @@ ImmersedBoundary adaptive_box(double dt_min, int max_level, double dt) {
   ImmersedBoundary ib(box16(), FluidParameters{1.0, 0.1 * units::cP}, o, {}, io);
   cells::Placement p = at(8, 8, 8);
   p.stretch = {1.0, 1 / 1.1, 1.1};
-  ib.add(cells::Batch(sphere(), {p}));
+  ib.add(cells::Batch(small_sphere(), {p}));
   return ib;
 }
 
@@ -320,7 +317,7 @@ TEST(IbStep, TheAdaptiveStepStopsWhenEvenItsSmallestStepViolatesTheBound) {
   ImmersedBoundary ib(box16(), FluidParameters{1.0, 0.1 * units::cP}, o, {}, io);
   cells::Placement p = at(8, 8, 8);
   p.stretch = {2.0, 1.0, 0.5};
-  ib.add(cells::Batch(sphere(), {p}));
+  ib.add(cells::Batch(small_sphere(), {p}));
   const dvec before = ib.batch(0).state().storage();
   const std::string m = testing::message_of<NumericalError>([&] { ib.step(); });
   EXPECT_NE(m.find("eq. 5.4"), std::string::npos) << m;
@@ -349,7 +346,7 @@ std::vector<double> relaxed(double dt, TimeIntegrator ti, Coupling c) {
   ImmersedBoundary ib(g, FluidParameters{1.0, 0.1 * units::cP}, o, {}, io);
   cells::Placement p = at(8, 8, 8);
   p.stretch = {1.0, 1 / 1.1, 1.1};
-  ib.add(cells::Batch(sphere(), {p}));
+  ib.add(cells::Batch(small_sphere(), {p}));
   const int steps = int(std::lround(2 * units::us / dt));
   for (int n = 0; n < steps; ++n) ib.step();
   return ib.batch(0).positions_host();
@@ -463,7 +460,7 @@ TEST(IbStep, AFrameSetReturnsToItsAnchorsOnAverageAndCarriesEveryoneWithIt) {
     Z[2 * n + q] = 1.2 * std::sin(2 * pi * q / n);
   }
   ImmersedBoundary ib = forward_euler(g, dt, o);
-  TetheredPoints ring{"ring", Z, Z, 5.0, 0.0};
+  TetheredPoints ring{"ring", Z, Z, 5.0, 0.0, false, {}};
   ring.frame = true;
   ib.add(ring);
   ring.name = "second";
@@ -482,7 +479,7 @@ TEST(IbStep, AFrameSetReturnsToItsAnchorsOnAverageAndCarriesEveryoneWithIt) {
   host_vector<double> X = Z;
   for (index_t q = 0; q < n; ++q) X[q] += 0.1;
   ImmersedBoundary moved = forward_euler(g, dt, o);
-  TetheredPoints displaced{"ring", X, Z, 5.0, 0.0};
+  TetheredPoints displaced{"ring", X, Z, 5.0, 0.0, false, {}};
   displaced.frame = true;
   moved.add(displaced);
   moved.add(stretched_shell());

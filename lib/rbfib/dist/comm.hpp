@@ -40,6 +40,17 @@ class Comm {
   /// NumericalError with its cause, or std::runtime_error, with that rank's message). Call it
   /// before the next collective, so that no rank is left waiting in one.
   void agree(std::exception_ptr error) const;
+  /// Runs fn() on this rank, then agree()s on whether it threw.
+  template <class F>
+  void agreed(F&& fn) const {
+    std::exception_ptr error;
+    try {
+      fn();
+    } catch (...) {
+      error = std::current_exception();
+    }
+    agree(error);
+  }
 
  private:
   MPI_Comm comm_;

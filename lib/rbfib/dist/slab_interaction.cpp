@@ -23,23 +23,11 @@ int SlabInteraction::ghosts_needed(double beyond, double h, ib::Kernel kernel) {
 }
 
 void SlabInteraction::interpolate(const dvec& X, const std::array<dvec, 3>& u, dvec& U) {
-  std::exception_ptr error;
-  try {
-    ib_.interpolate(X, u, U);
-  } catch (...) {
-    error = std::current_exception();
-  }
-  fluid_.comm().agree(error);
+  fluid_.comm().agreed([&] { ib_.interpolate(X, u, U); });
 }
 
 void SlabInteraction::spread(const dvec& X, const dvec& F, std::array<dvec, 3>& f) {
-  std::exception_ptr error;
-  try {
-    ib_.spread(X, F, f);
-  } catch (...) {
-    error = std::current_exception();
-  }
-  fluid_.comm().agree(error);
+  fluid_.comm().agreed([&] { ib_.spread(X, F, f); });
   for (int c = 0; c < 3; ++c) fluid_.halo().sum(f[c]);
 }
 

@@ -50,10 +50,12 @@ std::string Progress::describe() const {
   const double unit = t_end >= 1e-3 ? units::ms : units::us;
   const char* name = t_end >= 1e-3 ? "ms" : "us";
   char line[320];
-  const double rate = sitting_seconds > 0 ? double(sitting_steps) / sitting_seconds : NAN;
+  // The rate of this sitting's steps; none yet (a run resumed already finished): not printed.
+  char rate[48] = "no steps this sitting";
+  if (sitting_steps > 0 && sitting_seconds > 0) std::snprintf(rate, sizeof rate, "%.3g steps/s", double(sitting_steps) / sitting_seconds);
   const double t = clock.t, mean_dt = clock.step > 0 ? t / double(clock.step) : clock.dt;
   const bool long_step = mean_dt >= 1e-5;  // 10 us and above in us, below in ns
-  std::snprintf(line, sizeof line, "t = %.4g of %.4g %s (%.1f%%), step %ld, %.3g steps/s, mean dt %.4g %s", t / unit, t_end / unit, name,
+  std::snprintf(line, sizeof line, "t = %.4g of %.4g %s (%.1f%%), step %ld, %s, mean dt %.4g %s", t / unit, t_end / unit, name,
                 t_end > 0 ? 100 * t / t_end : 0.0, clock.step, rate, mean_dt / (long_step ? units::us : units::ns),
                 long_step ? "us" : "ns");
   std::string s = line;
