@@ -17,13 +17,6 @@ namespace {
 double global_mean(const Slabs& slabs, const dvec& v) {
   return slabs.comm().sum(thrust::reduce(v.begin(), v.end(), 0.0)) / double(slabs.box().size());
 }
-
-host_vector<double> eigenvalues(const AxisStencil& a, int n) {
-  host_vector<double> mu(static_cast<std::size_t>(n), 0.0);
-  if (a.periodic)
-    for (int k = 0; k < n; ++k) mu[k] = -(2.0 - 2.0 * std::cos(2 * pi * k / n)) * a.inv_h2;
-  return mu;
-}
 }  // namespace
 
 FourierSolver::FourierSolver(const Slabs& slabs, Correction correction, double alpha, double beta, const std::string& name)
@@ -39,9 +32,9 @@ FourierSolver::FourierSolver(const Slabs& slabs, Correction correction, double a
   const bool neumann_both = wall_ && s.axis[1].lo.ghost == 1.0 && s.axis[1].hi.ghost == 1.0;
   singular_ = alpha == 0 && (!wall_ || neumann_both);
   const int nx = box.n(0), ny = box.n(1), nz = box.n(2);
-  mux_ = eigenvalues(s.axis[0], nx);
-  muy_ = eigenvalues(s.axis[1], ny);
-  muz_ = eigenvalues(s.axis[2], nz);
+  mux_ = kernels::periodic_eigenvalues(s.axis[0], nx);
+  muy_ = kernels::periodic_eigenvalues(s.axis[1], ny);
+  muz_ = kernels::periodic_eigenvalues(s.axis[2], nz);
 
   const ptrdiff_t n[2] = {nz, nx};
   ptrdiff_t local_n0 = 0, local_0_start = 0, local_n1 = 0, local_1_start = 0;

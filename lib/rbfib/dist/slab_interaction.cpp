@@ -16,10 +16,7 @@ SlabInteraction::SlabInteraction(const SlabFluid& fluid, ib::Kernel kernel)
 }
 
 int SlabInteraction::ghosts_needed(double beyond, double h, ib::Kernel kernel) {
-  const MacGrid probe = make_mac_grid(3, {8, 8, 8}, {8 * h, 8 * h, 8 * h},
-                                      {MacBoundary::periodic, MacBoundary::periodic, MacBoundary::periodic});
-  const int support = ib::Interaction(component_boxes(probe), kernel).support();
-  return int(std::ceil(std::max(0.0, beyond) / h)) + support / 2 + 1;
+  return int(std::ceil(std::max(0.0, beyond) / h)) + ib::kernel_support(kernel) / 2 + 1;
 }
 
 void SlabInteraction::interpolate(const dvec& X, const std::array<dvec, 3>& u, dvec& U) {

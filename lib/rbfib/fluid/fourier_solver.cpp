@@ -38,13 +38,8 @@ FourierSolver::FourierSolver(const Box& box, Correction correction, double alpha
   wall_ = box.dims >= 2 && !box.axes[1].periodic();
   const bool neumann_both = wall_ && s.axis[1].lo.ghost == 1.0 && s.axis[1].hi.ghost == 1.0;
   singular_ = alpha == 0 && (!wall_ || neumann_both);
-  for (int d = 0; d < 3; ++d) {
-    const int n = box.n(d);
-    host_vector<double> mu(static_cast<std::size_t>(n), 0.0);
-    if (d < box.dims && s.axis[d].periodic)
-      for (int k = 0; k < n; ++k) mu[k] = -(2.0 - 2.0 * std::cos(2 * pi * k / n)) * s.axis[d].inv_h2;
-    mu_[d] = mu;
-  }
+  for (int d = 0; d < 3; ++d)
+    mu_[d] = d < box.dims ? kernels::periodic_eigenvalues(s.axis[d], box.n(d)) : host_vector<double>(1, 0.0);
   fft_ = std::make_unique<linalg::FourierTransform>(extents(box), transformed(box));
   work_.resize(static_cast<std::size_t>(box.size()));
   if (wall_) thomas_.resize(static_cast<std::size_t>(box.size()));

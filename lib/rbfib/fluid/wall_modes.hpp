@@ -6,7 +6,20 @@
 #include "rbfib/grid/axis.hpp"
 #include "rbfib/linalg/fft.hpp"
 
+#include "rbfib/core/constants.hpp"
+
+#include <cmath>
+
 namespace rbfib::kernels {
+
+/// Eigenvalues mu(k) = -(2 - 2 cos(2 pi k / n)) / h^2 of the periodic second difference along an
+/// axis (fourier_solver.hpp); zeros along a wall axis.
+inline host_vector<double> periodic_eigenvalues(const AxisStencil& a, int n) {
+  host_vector<double> mu(static_cast<std::size_t>(n), 0.0);
+  if (a.periodic)
+    for (int k = 0; k < n; ++k) mu[k] = -(2.0 - 2.0 * std::cos(2 * pi * k / n)) * a.inv_h2;
+  return mu;
+}
 
 struct WallModes {
   AxisStencil ay;  ///< the y axis (walls), with its ghosts and modified-identity weights

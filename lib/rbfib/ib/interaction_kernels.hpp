@@ -571,8 +571,9 @@ struct BadCoordinate {
     // On a window the support must stay inside it: cells floor(u) - s/2 + 1 .. floor(u) + s/2 for
     // an even support, round(u) -+ (s - 1)/2 for an odd one.
     const int half = support / 2;
+    const double u = a.period > 0 && finite ? a.index_position(x) : 0.0;
     const bool inside =
-        a.period > 0 ? (finite && a.index_position(x) >= half && a.index_position(x) <= a.cells - half - 1)
+        a.period > 0 ? (finite && u >= half && u <= a.cells - half - 1)
         : a.periodic ? (x - a.origin <= periodic_reach * a.length && a.origin - x <= periodic_reach * a.length)
                      : (x >= a.origin && x <= a.origin + a.length);
     return (finite && inside) ? 3 * n : e;
