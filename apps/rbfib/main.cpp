@@ -8,6 +8,11 @@
 //                                           scene's interval, the end and a numerical stop)
 //   rbfib restart DIR [--until T]           continue from DIR/checkpoint.h5, bit for bit (a run
 //                                           that has finished or stopped says so and exits)
+//   mpirun -n N rbfib run|restart ...       the same on N processes (built with RBFIB_MPI): the
+//                                           fluid in slabs along z (x and z periodic: the Fourier
+//                                           solvers), each process the cells whose centroid lies in
+//                                           its planes; the checkpoint is the one a single process
+//                                           writes, so a run continues on any number of processes
 //
 // Exit status: 0 done, 2 bad input (one line naming the field and the value), 3 a numerical
 // failure (the run stops, the message names the step, time and cause; what was written stays).
@@ -19,6 +24,11 @@
 #include "rbfib/scene/scene.hpp"
 #include "rbfib/io/snapshot.hpp"
 #include "rbfib/run/run.hpp"
+
+#ifdef RBFIB_WITH_MPI
+#include "rbfib/dist/slab_fluid.hpp"
+#include "rbfib/dist/slab_interaction.hpp"
+#endif
 
 #include <CLI/CLI.hpp>
 
@@ -38,6 +48,38 @@
 using namespace rbfib;
 
 namespace {
+
+/// The processes of this run: one, or N under mpirun (built with RBFIB_MPI). Process 0 prints and
+/// writes the files; every process steps its part.
+struct Processes {
+  int rank = 0, size = 1;
+  bool writer() const { return rank == 0; }
+#ifdef RBFIB_WITH_MPI
+  std::unique_ptr<dist::Comm> comm;
+#endif
+  /// The split of the scene's fluid among the processes (null for one process). Throws InputError
+  /// naming the field for a scene the split cannot run (walls across x or z: the multigrid path).
+  std::shared_ptr<const FluidDecomposition> split(const scene::Scene& s) const {
+    if (size == 1) return nullptr;
+#ifdef RBFIB_WITH_MPI
+    require(s.snapshot_every == 0, "snapshot_every", s.snapshot_every,
+            "snapshots are written by one process only: set it to 0 on several processes (the checkpoints serve any number)");
+    // Halo: a cell reaches beyond its owner's planes by its size (1.5 x its reference radius, for
+    // the stretch of a sheared cell) plus the kernel's support.
+    double beyond = 0;
+    for (const scene::CellTypeGroups& g : scene::dimensionless_groups(s)) beyond = std::max(beyond, 1.5 * g.radius);
+    const int ghosts = std::max(dist::SlabFluid::fluid_reach, dist::SlabInteraction::ghosts_needed(beyond, s.grid.h(2), s.ib.kernel));
+    return std::make_shared<const dist::SlabFluid>(s.grid, *comm, ghosts);
+#else
+    (void)s;
+    return nullptr;
+#endif
+  }
+  /// Returns when every process has come here (the run's directory is ready).
+  void wait_for_all(const std::shared_ptr<const FluidDecomposition>& parts) const {
+    if (parts) parts->all(true);
+  }
+};
 
 /// A rough estimate of what a scene needs (bytes): about 40 grid vectors for the fluid, the
 /// operators of each cell type (six blocks of n_s (+ n_d with bending) x n_d).
@@ -145,7 +187,7 @@ std::vector<std::string> csv_columns(const sim::ImmersedBoundary& ib) {
                                 "max_force_density_dyn_cm3", "dt_bound_s", "seconds_interpolation", "seconds_forces",
                                 "seconds_spreading", "seconds_fluid"};
   for (index_t b = 0; b < ib.batches(); ++b)
-    for (index_t k = 0; k < ib.batch(b).size(); ++k) c.push_back("volume_" + ib.batch(b).type().name() + "_" + std::to_string(k) + "_um3");
+    for (index_t k = 0; k < ib.cells_in_run(b); ++k) c.push_back("volume_" + ib.batch(b).type().name() + "_" + std::to_string(k) + "_um3");
   return c;
 }
 
@@ -162,8 +204,9 @@ std::string csv_line(const std::vector<double>& row) {
 /// Steps the scene from its start or its checkpoint (DIR/checkpoint.h5) to min(until, its end):
 /// the run loop (run/run.hpp) with the scene's cadences; DIR/diagnostics.csv is the series
 /// "diagnostics" (kept in the checkpoint), rewritten from it when a run continues.
-int advance(const scene::Scene& s, const std::string& out, double until) {
-  const bool terminal = isatty(STDOUT_FILENO);
+int advance(const scene::Scene& s, const std::string& out, double until, const Processes& procs,
+            std::shared_ptr<const FluidDecomposition> parts) {
+  const bool terminal = isatty(STDOUT_FILENO), writer = procs.writer();
   const std::string checkpoint = out + "/checkpoint.h5", csv_path = out + "/diagnostics.csv";
   run::Options o;
   o.t_end = s.t_end;
@@ -173,6 +216,7 @@ int advance(const scene::Scene& s, const std::string& out, double until) {
   o.sample_every = {s.diagnostics_every, 0, 0};
   o.snapshot_every = {0, s.snapshot_every, 0};
   o.progress_every = {0, 0, terminal ? 0.5 : 5.0};
+  o.parts = parts;
   std::ofstream csv;
   std::unique_ptr<io::SnapshotWriter> snapshots;
   run::Hooks h;
@@ -183,9 +227,9 @@ int advance(const scene::Scene& s, const std::string& out, double until) {
     std::vector<double> row = {double(ib.step_count()), ib.time(), r->dt, r->max_velocity, r->kinetic_energy, r->elastic_energy,
                                r->max_force_density, r->dt_bound, r->seconds_interpolation, r->seconds_forces,
                                r->seconds_spreading, r->seconds_fluid};
-    for (index_t b = 0; b < ib.batches(); ++b)
-      for (double v : ib.diagnostics(b).volume) row.push_back(v / (units::um * units::um * units::um));
-    csv << csv_line(row);
+    for (index_t b = 0; b < ib.batches(); ++b)  // every cell of the run, in the order of their indices
+      for (double v : ib.run_cell_values(b, ib.diagnostics(b).volume)) row.push_back(v / (units::um * units::um * units::um));
+    if (writer) csv << csv_line(row);
     d.rows.push_back(std::move(row));
   };
   h.checkpointed = [&](const run::SeriesSet&) { csv.flush(); };
@@ -195,10 +239,18 @@ int advance(const scene::Scene& s, const std::string& out, double until) {
       snapshots->write(ib);
     };
   h.progress = [&](const run::Progress& p) {
-    std::cout << (terminal ? "\r" : "") << p.describe() << (terminal ? "" : "\n") << std::flush;
+    if (writer) std::cout << (terminal ? "\r" : "") << p.describe() << (terminal ? "" : "\n") << std::flush;
   };
-  std::cout << scene::describe(s) << "building the cell types and the solver ..." << std::endl;
+  if (writer) {
+    std::cout << scene::describe(s);
+    if (procs.size > 1) std::cout << "processes: " << procs.size << " (the fluid in slabs along z, each process the cells whose centroid lies in its planes)\n";
+    std::cout << "building the cell types and the solver ..." << std::endl;
+  }
   run::Run run(s, o, h);
+  if (!writer) {
+    const run::Progress p = run.evolve();
+    return p.status == run::RunStatus::stopped ? 3 : 0;
+  }
   // The table as the run has it: its header and every row the checkpoint kept.
   csv.open(csv_path, std::ios::trunc);
   const std::vector<std::string> columns = csv_columns(run.ib());
@@ -225,22 +277,42 @@ int advance(const scene::Scene& s, const std::string& out, double until) {
   return 0;
 }
 
-int run_scene(const scene::Scene& s, const std::string& out, double until) {
+int run_scene(const scene::Scene& s, const std::string& out, double until, const Processes& procs) {
   check_memory(s);
-  std::filesystem::create_directories(out);
-  std::ofstream(out + "/scene.yaml") << s.source;
-  std::filesystem::remove(out + "/checkpoint.h5");  // a run starts afresh; `restart` continues
-  return advance(s, out, until > 0 ? std::min(until, s.t_end) : s.t_end);
+  const std::shared_ptr<const FluidDecomposition> parts = procs.split(s);
+  if (procs.writer()) {
+    std::filesystem::create_directories(out);
+    std::ofstream(out + "/scene.yaml") << s.source;
+    std::filesystem::remove(out + "/checkpoint.h5");  // a run starts afresh; `restart` continues
+  }
+  procs.wait_for_all(parts);
+  return advance(s, out, until > 0 ? std::min(until, s.t_end) : s.t_end, procs, parts);
 }
 
-int restart(const std::string& out, double until) {
+int restart(const std::string& out, double until, const Processes& procs) {
   const io::Checkpoint k = io::read_checkpoint(out + "/checkpoint.h5");
-  return advance(scene::parse_scene(k.scene_yaml, out + "/checkpoint.h5"), out, until);
+  const scene::Scene s = scene::parse_scene(k.scene_yaml, out + "/checkpoint.h5");
+  return advance(s, out, until, procs, procs.split(s));
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  Processes procs;
+#ifdef RBFIB_WITH_MPI
+  // MPI only when started by mpirun (OpenMPI names the world's size): a plain run stays one process.
+  std::unique_ptr<dist::Session> session;
+  if (std::getenv("OMPI_COMM_WORLD_SIZE")) {
+    session = std::make_unique<dist::Session>(argc, argv);
+    procs.comm = std::make_unique<dist::Comm>();
+    procs.rank = procs.comm->rank();
+    procs.size = procs.comm->size();
+  }
+#endif
+  // Messages from process 0 only (every process meets the same error: the scene is the same, and
+  // a step's failure is agreed by all).
+  static std::ostream silent(nullptr);
+  std::ostream& err = procs.writer() ? std::cerr : silent;
   CLI::App app{"rbfib: immersed-boundary simulations of red cells, platelets and endothelium in plasma (scenes in YAML)"};
   app.require_subcommand(1);
   std::string scene_path, out, until_text;
@@ -261,22 +333,23 @@ int main(int argc, char** argv) {
   try {
     const double until = until_text.empty() ? 0.0 : parse_quantity(until_text, "s", "--until");
     if (!until_text.empty() && !(until > 0)) throw InputError("--until", until_text, "must be positive");
-    if (*restartc) return restart(out, until);
+    if (*restartc) return restart(out, until, procs);
     const scene::Scene s = scene::load_scene(scene_path);
     if (*check) {
+      if (!procs.writer()) return 0;
       check_memory(s);
       print_check(s);
       return 0;
     }
-    return run_scene(s, out, until);
+    return run_scene(s, out, until, procs);
   } catch (const InputError& e) {
-    std::cerr << "rbfib: " << e.what() << std::endl;
+    err << "rbfib: " << e.what() << std::endl;
     return 2;
   } catch (const NumericalError& e) {
-    std::cerr << "rbfib: " << e.what() << std::endl;
+    err << "rbfib: " << e.what() << std::endl;
     return 3;
   } catch (const std::exception& e) {
-    std::cerr << "rbfib: " << e.what() << std::endl;
+    err << "rbfib: " << e.what() << std::endl;
     return 1;
   }
 }

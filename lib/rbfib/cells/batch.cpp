@@ -106,6 +106,23 @@ Batch::Batch(std::shared_ptr<const CellType> type, const std::vector<Placement>&
   for (index_t c = 0; c < cells_; ++c) place(c, placements[c]);
 }
 
+Batch Batch::from_state(std::shared_ptr<const CellType> type, index_t cells, const std::vector<double>& state,
+                        const std::vector<double>& body) {
+  require(bool(type), "batch cell type", "null", "must be given");
+  require(cells >= 0, "batch of '" + type->name() + "': number of cells", cells, "must be >= 0");
+  require(index_t(state.size()) == 6 * cells * type->n_data(), "batch of '" + type->name() + "': state size", state.size(),
+          "must be 6 n_d N = " + to_text(6 * cells * type->n_data()));
+  require(index_t(body.size()) == 3 * cells, "batch of '" + type->name() + "': body forces", body.size(),
+          "must be 3 N = " + to_text(3 * cells));
+  Batch b;
+  b.type_ = std::move(type);
+  b.cells_ = cells;
+  b.state_ = linalg::DeviceMatrix::from_host(b.type_->n_data(), 6 * cells, state.data());
+  b.body_ = body;
+  b.body_device_ = dvec(body.begin(), body.end());
+  return b;
+}
+
 std::vector<double> placed(const std::vector<double>& reference, index_t n, const Placement& p, const std::string& who) {
   const double an = std::sqrt(p.axis[0] * p.axis[0] + p.axis[1] * p.axis[1] + p.axis[2] * p.axis[2]);
   require(an > 0 && std::isfinite(an), who + ": rotation axis length", an, "must be finite and > 0");

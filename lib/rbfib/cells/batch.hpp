@@ -74,6 +74,10 @@ struct CellForces {
 class Batch {
  public:
   Batch(std::shared_ptr<const CellType> type, const std::vector<Placement>& placements);
+  /// A batch of `cells` cells (zero allowed: a process that owns none of the type) from their
+  /// state (host, n_d x 6N column-major as state()) and body forces (3N, F[d N + c]).
+  static Batch from_state(std::shared_ptr<const CellType> type, index_t cells, const std::vector<double>& state,
+                          const std::vector<double>& body);
 
   const CellType& type() const { return *type_; }
   const std::shared_ptr<const CellType>& type_ptr() const { return type_; }
@@ -109,6 +113,7 @@ class Batch {
   Workspace& workspace() const { return work_; }
 
  private:
+  Batch() = default;
   std::shared_ptr<const CellType> type_;
   index_t cells_ = 0;
   linalg::DeviceMatrix state_;

@@ -54,6 +54,27 @@ index_t Comm::sum(index_t v) const {
 }
 bool Comm::all(bool ok) const { return reduce(comm_, ok ? 1 : 0, MPI_INT, MPI_LAND) != 0; }
 
+std::vector<std::vector<double>> Comm::exchange(const std::vector<std::vector<double>>& to) const {
+  require(int(to.size()) == size_, "Comm::exchange: messages", to.size(), "must be one per rank, " + to_text(size_));
+  std::vector<int> send_counts(size_), recv_counts(size_), send_at(size_, 0), recv_at(size_, 0);
+  for (int q = 0; q < size_; ++q) send_counts[q] = int(to[q].size());
+  check(MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm_), "MPI_Alltoall");
+  std::vector<double> send, recv;
+  for (int q = 0; q < size_; ++q) {
+    send_at[q] = int(send.size());
+    send.insert(send.end(), to[q].begin(), to[q].end());
+  }
+  int total = 0;
+  for (int q = 0; q < size_; ++q) recv_at[q] = total, total += recv_counts[q];
+  recv.resize(static_cast<std::size_t>(total));
+  check(MPI_Alltoallv(send.data(), send_counts.data(), send_at.data(), MPI_DOUBLE, recv.data(), recv_counts.data(),
+                      recv_at.data(), MPI_DOUBLE, comm_),
+        "MPI_Alltoallv");
+  std::vector<std::vector<double>> from(static_cast<std::size_t>(size_));
+  for (int q = 0; q < size_; ++q) from[q].assign(recv.begin() + recv_at[q], recv.begin() + recv_at[q] + recv_counts[q]);
+  return from;
+}
+
 namespace {
 void broadcast(MPI_Comm comm, int root, std::string& s) {
   int length = static_cast<int>(s.size());

@@ -9,6 +9,7 @@
 
 #include <exception>
 #include <string>
+#include <vector>
 
 namespace rbfib::dist {
 
@@ -35,6 +36,9 @@ class Comm {
   index_t sum(index_t v) const;
   /// true on every rank when `ok` is true on every rank (a stop agreed by all).
   bool all(bool ok) const;
+  /// Sends to[q] to rank q (`to` has size() entries, any of them empty) and returns what every
+  /// rank sent here, from[q] (MPI_Alltoallv after the counts' MPI_Alltoall).
+  std::vector<std::vector<double>> exchange(const std::vector<std::vector<double>>& to) const;
   /// A failure on some ranks becomes the same failure on all: returns when `error` is null on
   /// every rank, else every rank throws the error of the lowest rank that failed (InputError,
   /// NumericalError with its cause, or std::runtime_error, with that rank's message). Call it

@@ -31,6 +31,15 @@ Box SlabFluid::global_box(const Box& local_box) const {
   return b;
 }
 
+int SlabFluid::owner(double z) const {
+  const int nz = grid_.cells[2];
+  const int plane = int(std::floor((z - grid_.origin[2]) / grid_.h(2)));
+  const int wrapped = (plane % nz + nz) % nz;
+  for (int r = 0; r < comm_.size(); ++r)
+    if (wrapped >= slabs_.first(r) && wrapped < slabs_.first(r) + slabs_.planes(r)) return r;
+  throw InputError("SlabFluid::owner: z (cm)", to_text(z), "lies in no rank's planes");
+}
+
 namespace {
 /// A distributed solver with the slabs of its own box (the solver keeps a reference to them).
 struct SlabSolve {

@@ -34,6 +34,12 @@ class SlabFluid : public FluidDecomposition {
   double sum(double v) const override { return comm_.sum(v); }
   bool all(bool ok) const override { return comm_.all(ok); }
   void agree(std::exception_ptr error) const override { comm_.agree(error); }
+  int process() const override { return comm_.rank(); }
+  int processes() const override { return comm_.size(); }
+  int owner(double z) const override;
+  std::vector<std::vector<double>> exchange(const std::vector<std::vector<double>>& to) const override {
+    return comm_.exchange(to);
+  }
 
   const MacGrid& grid() const { return grid_; }
   const Comm& comm() const { return comm_; }
@@ -44,9 +50,9 @@ class SlabFluid : public FluidDecomposition {
   Box global_box(const Box& local_box) const;
 
   /// This rank's part, with filled ghosts, of a field given whole on every rank.
-  dvec extend(const Box& local_box, const dvec& global) const;
+  dvec extend(const Box& local_box, const dvec& global) const override;
   /// The whole field on every rank from each rank's part (collective).
-  dvec gather(const Box& local_box, const dvec& local) const;
+  dvec gather(const Box& local_box, const dvec& local) const override;
 
  private:
   MacGrid grid_, local_;

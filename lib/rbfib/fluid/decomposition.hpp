@@ -13,6 +13,7 @@
 #include <exception>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace rbfib {
 
@@ -46,6 +47,20 @@ class FluidDecomposition {
   virtual double sum(double v) const = 0;
   /// true on every process when ok is true on every process.
   virtual bool all(bool ok) const = 0;
+  /// This process's number (0 writes the run's files) and the number of processes.
+  virtual int process() const = 0;
+  virtual int processes() const = 0;
+  /// The process owning the plane that holds `x`, a coordinate along the split axis (any periodic
+  /// image): the owner of a cell whose centroid lies there.
+  virtual int owner(double x) const = 0;
+  /// Sends to[q] to process q (one entry per process, any of them empty) and returns what every
+  /// process sent here, from[q] (collective): Lagrangian data moving between owners.
+  virtual std::vector<std::vector<double>> exchange(const std::vector<std::vector<double>>& to) const = 0;
+  /// The whole field on every process from each process's part (collective; `local_box` a box of
+  /// the local grid), and this process's part, ghosts filled, of a field given whole: checkpoints
+  /// that do not depend on the number of processes.
+  virtual dvec gather(const Box& local_box, const dvec& local) const = 0;
+  virtual dvec extend(const Box& local_box, const dvec& whole) const = 0;
   /// Returns when `error` is null on every process; else every process throws the error of the
   /// lowest that failed (call it before the next collective step, so that none is left waiting).
   virtual void agree(std::exception_ptr error) const = 0;

@@ -101,7 +101,8 @@ const char* to_string(RunStatus s) {
 
 void write_checkpoint(const std::string& path, const std::string& scene_yaml, const sim::ImmersedBoundary& ib,
                       const RunRecord& record) {
-  const sim::ImmersedBoundary::Carried c = ib.carried();
+  const sim::ImmersedBoundary::Carried c = ib.carried();  // on a split fluid: the whole run's, on every process
+  if (const FluidDecomposition* parts = ib.fluid().parts(); parts && parts->process() != 0) return;  // process 0 writes
   const std::string tmp = path + ".tmp";
   auto array = [](hid_t where, const std::string& name, const dvec& v) {
     const host_vector<double> h = v;
@@ -254,10 +255,10 @@ scene::StartingState read_starting_state(const scene::Scene& s) {
   return start;
 }
 
-sim::ImmersedBoundary build_scene(const scene::Scene& s) {
-  if (s.start.checkpoint.empty()) return scene::build(s);
+sim::ImmersedBoundary build_scene(const scene::Scene& s, std::shared_ptr<const FluidDecomposition> parts) {
+  if (s.start.checkpoint.empty()) return scene::build(s, nullptr, std::move(parts));
   const scene::StartingState start = read_starting_state(s);
-  return scene::build(s, &start);
+  return scene::build(s, &start, std::move(parts));
 }
 
 }  // namespace rbfib::io

@@ -49,6 +49,8 @@ struct RunRecord {
   std::map<std::string, Series> series;
 };
 
+/// Writes the run's state; on a split fluid a collective call (the whole state is gathered) whose
+/// process 0 writes the file, the same file one process writes.
 void write_checkpoint(const std::string& path, const std::string& scene_yaml, const sim::ImmersedBoundary& ib,
                       const RunRecord& record = {});
 
@@ -65,7 +67,8 @@ Checkpoint read_checkpoint(const std::string& path);
 /// of each of its batches and its grid (from the scene text it keeps).
 scene::StartingState read_starting_state(const scene::Scene& scene);
 
-/// Builds a scene's coupled step (scene::build), from its start when it has one.
-sim::ImmersedBoundary build_scene(const scene::Scene& scene);
+/// Builds a scene's coupled step (scene::build), from its start when it has one; on a split fluid
+/// (`parts`, dist/) each process builds its part.
+sim::ImmersedBoundary build_scene(const scene::Scene& scene, std::shared_ptr<const FluidDecomposition> parts = nullptr);
 
 }  // namespace rbfib::io

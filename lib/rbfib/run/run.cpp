@@ -77,7 +77,7 @@ Run::Run(scene::Scene scene, Options options, Hooks hooks)
       source_(scene_->source),
       options_(std::move(options)),
       hooks_(std::move(hooks)),
-      ib_(io::build_scene(*scene_)) {
+      ib_(io::build_scene(*scene_, options_.parts)) {
   start();
 }
 
@@ -153,8 +153,12 @@ Progress Run::evolve(long max_steps) {
       snapshot_due(options_.snapshot_every, ib_.time(), start), progress_due(options_.progress_every, ib_.time(), start);
   const double end = std::min(options_.t_end, options_.until);
   long taken = 0;
+  // On a split fluid a wall-clock decision (the sitting's end, a cadence by wall time) is taken
+  // when any process takes it, so that all go on to the same collective calls.
+  const FluidDecomposition* parts = ib_.fluid().parts();
+  auto any = [parts](bool v) { return parts ? !parts->all(!v) : v; };
   try {
-    while (ib_.time() < end * (1 - 1e-12) && seconds_between(start, clock_type::now()) < options_.sitting) {
+    while (ib_.time() < end * (1 - 1e-12) && !any(seconds_between(start, clock_type::now()) >= options_.sitting)) {
       if (max_steps >= 0 && taken == max_steps) return progress();  // the caller steps again soon
       ++taken;
       const auto t0 = clock_type::now();
@@ -170,12 +174,12 @@ Progress Run::evolve(long max_steps) {
       try {  // a hook that measures the new state may find it broken (an inverted cell): say where
         if (sample_due(step, t, t1) || last) sample(&report);
         if (hooks_.after_step) hooks_.after_step(ib_, &report, record_.series);
-        if (hooks_.snapshot && snapshot_due(step, t, t1)) hooks_.snapshot(ib_);
+        if (hooks_.snapshot && any(snapshot_due(step, t, t1))) hooks_.snapshot(ib_);
       } catch (const NumericalError& e) {
         throw NumericalError(e.cause(), "after step " + to_text(step) + " at t = " + to_text(t) + " s: " + e.what());
       }
       if (last) record_.status = RunStatus::finished;
-      else if (checkpoint_due(step, t, t1)) checkpoint();
+      else if (any(checkpoint_due(step, t, t1))) checkpoint();
       if (hooks_.progress && progress_due(step, t, t1)) hooks_.progress(progress());
     }
   } catch (const NumericalError& e) {

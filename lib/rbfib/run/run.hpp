@@ -49,6 +49,9 @@ struct Options {
   Cadence snapshot_every;               ///< snapshots (Hooks::snapshot): after these steps
   Cadence progress_every{0, 0, 30};     ///< progress lines (Hooks::progress)
   std::string label;                    ///< kept in the checkpoint of a fresh run (e.g. the code version)
+  /// A split fluid (dist/): each process steps its part of a scene; the cadences and the sitting's
+  /// end are agreed by all, process 0 writes the checkpoint. Null: one process.
+  std::shared_ptr<const FluidDecomposition> parts;
 };
 
 /// Where a run stands, for progress lines and reports.

@@ -767,7 +767,7 @@ std::vector<std::string> check_contacts(const Scene& s, const StartingState* sta
   return near;
 }
 
-sim::ImmersedBoundary build(const Scene& s, const StartingState* start) {
+sim::ImmersedBoundary build(const Scene& s, const StartingState* start, std::shared_ptr<const FluidDecomposition> parts) {
   check_contacts(s, start);
   const auto& walls = s.walls;
   // The adaptive step's guard from tethers with fixed constants: no rung above their explicit
@@ -778,7 +778,8 @@ sim::ImmersedBoundary build(const Scene& s, const StartingState* start) {
       if (p.follow_gain == 0 && (p.k > 0 || p.eta > 0) && s.grid.lower[p.surface.normal] == MacBoundary::dirichlet &&
           s.grid.upper[p.surface.normal] == MacBoundary::dirichlet)
         options.adaptive.dt_max = std::min(options.adaptive.dt_max, sim::tether_dt_limit(tether_sheet(s, p), p.k, p.eta, s.ib.coupling == sim::Coupling::midpoint));
-  sim::ImmersedBoundary ib(s.grid, s.fluid, s.fluid_options, boundary_velocity(s), options);
+  sim::ImmersedBoundary ib(std::make_unique<NavierStokesStep>(s.grid, s.fluid, s.fluid_options, boundary_velocity(s), parts),
+                           options);
   if (s.initial_shear) {
     // The steady flow between the walls: linear in the wall-normal coordinate for each wall axis
     // (one wall axis at most carries a shear; with several, their profiles add).

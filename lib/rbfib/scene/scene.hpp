@@ -174,7 +174,8 @@ std::vector<std::string> check_contacts(const Scene& scene, const StartingState*
 /// flow at t = 0, one batch per cell type with its cells, the point sets; with a start (required
 /// when the scene has one), the fluid, clock, points and kept cells of the starting state.
 /// Builds each type's operators (seconds to minutes for large types).
-sim::ImmersedBoundary build(const Scene& scene, const StartingState* start = nullptr);
+sim::ImmersedBoundary build(const Scene& scene, const StartingState* start = nullptr,
+                            std::shared_ptr<const FluidDecomposition> parts = nullptr);
 
 /// The flat sheet that models a point set's explicit stability in the scene (its normal axis must
 /// have walls at both ends; InputError otherwise): its points per area over the box's tangential

@@ -9,7 +9,10 @@ namespace rbfib::sim {
 TetheredPoints tethered_capillary(const std::string& name, const surface::CylinderPoints& nodes, double k_teth) {
   require(k_teth >= 0, "k_teth (dyn/cm)", k_teth, "must be >= 0");
   const dvec Z(nodes.X.begin(), nodes.X.end());
-  TetheredPoints p{name, Z, Z, k_teth, 0.0};
+  TetheredPoints p;
+  p.name = name;
+  p.X = p.anchors = Z;
+  p.k = k_teth;
   p.frame = true;
   return p;
 }

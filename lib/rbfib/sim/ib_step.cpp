@@ -7,9 +7,11 @@
 #include <thrust/device_ptr.h>
 #include <thrust/find.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace rbfib::sim {
 
@@ -70,10 +72,43 @@ ImmersedBoundary::ImmersedBoundary(std::unique_ptr<FluidStep> fluid, IbOptions i
   }
 }
 
+namespace {
+std::vector<double> host(const dvec& v) {
+  std::vector<double> h(v.size());
+  thrust::copy(v.begin(), v.end(), h.begin());
+  return h;
+}
+bool by_id(const CellRecord& a, const CellRecord& b) { return a.id < b.id; }
+}  // namespace
+
 ImmersedBoundary::Carried ImmersedBoundary::carried() const {
   Carried c;
   c.fluid = fluid_->state();
-  for (const auto* b : batches_) c.batches.push_back(b->batch().state().storage());
+  const FluidDecomposition* parts = fluid_->parts();
+  if (parts) {
+    // The whole run's state on every process: the fluid gathered, every cell sent to every process.
+    const MacOperators& ops = fluid_->operators();
+    for (int a = 0; a < 3; ++a) c.fluid.u[a] = parts->gather(ops.component_box(a), c.fluid.u[a]);
+    c.fluid.p = parts->gather(ops.scalar_box(), c.fluid.p);
+    for (dvec& phi : c.fluid.phi)
+      if (!phi.empty()) phi = parts->gather(ops.scalar_box(), phi);
+    std::vector<double> mine;
+    std::vector<index_t> nd;
+    for (std::size_t b = 0; b < batches_.size(); ++b) {
+      nd.push_back(batch(index_t(b)).type().n_data());
+      for (const CellRecord& r : cell_records(batch(index_t(b)), ids_[b])) pack(r, index_t(b), mine);
+    }
+    std::vector<std::vector<CellRecord>> whole(batches_.size());
+    for (const std::vector<double>& m : parts->exchange(std::vector<std::vector<double>>(std::size_t(parts->processes()), mine)))
+      unpack(m, nd, [&](index_t b, CellRecord r) { whole[std::size_t(b)].push_back(std::move(r)); });
+    for (std::size_t b = 0; b < batches_.size(); ++b) {
+      std::sort(whole[b].begin(), whole[b].end(), by_id);
+      const std::vector<double> state = state_of(whole[b], nd[b]);
+      c.batches.push_back(dvec(state.begin(), state.end()));
+    }
+  } else {
+    for (const auto* b : batches_) c.batches.push_back(b->batch().state().storage());
+  }
   for (const auto* q : points_) c.points.push_back(q->points().X);
   for (const auto* q : shells_) c.shells.push_back(q->shell().X);
   for (const auto* q : cortices_) c.cortices.push_back(q->cortex().X);
@@ -81,9 +116,29 @@ ImmersedBoundary::Carried ImmersedBoundary::carried() const {
   return c;
 }
 
-void ImmersedBoundary::restore(const Carried& c) {
-  require(c.batches.size() == batches_.size(), "checkpoint: cell batches", c.batches.size(),
+void ImmersedBoundary::restore(const Carried& whole) {
+  require(whole.batches.size() == batches_.size(), "checkpoint: cell batches", whole.batches.size(),
           "must equal this setup's " + to_text(batches_.size()));
+  // On a split fluid: this process's part of the whole run's state.
+  const FluidDecomposition* parts = fluid_->parts();
+  const bool split = parts != nullptr;
+  Carried part;
+  if (split) {
+    part = whole;
+    const MacOperators& ops = fluid_->operators();
+    for (int a = 0; a < 3; ++a) part.fluid.u[a] = parts->extend(ops.component_box(a), whole.fluid.u[a]);
+    part.fluid.p = parts->extend(ops.scalar_box(), whole.fluid.p);
+    for (int k = 0; k < 2; ++k)
+      if (!whole.fluid.phi[k].empty()) part.fluid.phi[k] = parts->extend(ops.scalar_box(), whole.fluid.phi[k]);
+    for (std::size_t b = 0; b < batches_.size(); ++b) {
+      const index_t nd = batch(index_t(b)).type().n_data(), N = index_t(whole_body_[b].size()) / 3;
+      require(index_t(whole.batches[b].size()) == 6 * nd * N, "checkpoint: batch " + to_text(b) + " size", whole.batches[b].size(),
+              "must equal this setup's " + to_text(6 * nd * N));
+      own(index_t(b), records_of(host(whole.batches[b]), whole_body_[b], nd));
+      part.batches[b] = batch(index_t(b)).state().storage();
+    }
+  }
+  const Carried& c = split ? part : whole;
   require(c.points.size() == points_.size(), "checkpoint: point sets", c.points.size(),
           "must equal this setup's " + to_text(points_.size()));
   require(c.shells.size() == shells_.size(), "checkpoint: LDSM shells", c.shells.size(),
@@ -126,7 +181,78 @@ void ImmersedBoundary::set_level(int level) {
   fluid_->set_dt(std::ldexp(options_.adaptive.dt_min, level));
 }
 
+index_t ImmersedBoundary::cells_in_run(index_t b) const {
+  const FluidDecomposition* parts = fluid_->parts();
+  return parts ? index_t(whole_body_.at(std::size_t(b)).size()) / 3 : batch(b).size();
+}
+
+std::vector<double> ImmersedBoundary::run_cell_values(index_t b, const std::vector<double>& mine) const {
+  const FluidDecomposition* parts = fluid_->parts();
+  if (!parts) return mine;
+  const std::vector<index_t>& ids = ids_.at(std::size_t(b));
+  require(mine.size() == ids.size(), "run_cell_values: values", mine.size(), "must be one per cell of this process, " + to_text(ids.size()));
+  std::vector<double> message;  // (id, value) pairs
+  for (std::size_t c = 0; c < ids.size(); ++c) message.insert(message.end(), {double(ids[c]), mine[c]});
+  std::vector<double> all(static_cast<std::size_t>(cells_in_run(b)), NAN);
+  for (const std::vector<double>& m : parts->exchange(std::vector<std::vector<double>>(std::size_t(parts->processes()), message)))
+    for (std::size_t k = 0; k + 1 < m.size(); k += 2) all.at(static_cast<std::size_t>(m[k])) = m[k + 1];
+  return all;
+}
+
+void ImmersedBoundary::own(index_t b, const std::vector<CellRecord>& whole) {
+  const FluidDecomposition& parts = *fluid_->parts();
+  const std::shared_ptr<const cells::CellType> type = batch(b).type_ptr();
+  std::vector<CellRecord> mine;
+  ids_[std::size_t(b)].clear();
+  for (const CellRecord& r : whole) {
+    const double x = site_mean(r, parts.split_axis(), type->n_data());
+    // A cell with a non-finite site stays with process 0, whose step names it (locate()).
+    if (std::isfinite(x) ? parts.owner(x) == parts.process() : parts.process() == 0) {
+      mine.push_back(r);
+      ids_[std::size_t(b)].push_back(r.id);
+    }
+  }
+  batches_[std::size_t(b)]->replace(batch_of(type, mine));
+}
+
+void ImmersedBoundary::migrate() {
+  const FluidDecomposition* parts = fluid_->parts();
+  if (!parts || parts->processes() == 1) return;
+  const int me = parts->process(), axis = parts->split_axis();
+  const std::size_t B = batches_.size();
+  std::vector<std::vector<double>> to(std::size_t(parts->processes()));
+  std::vector<std::vector<CellRecord>> kept(B);
+  std::vector<char> changed(B, 0);
+  std::vector<index_t> nd(B);
+  for (std::size_t b = 0; b < B; ++b) {
+    nd[b] = batch(index_t(b)).type().n_data();
+    for (CellRecord& r : cell_records(batch(index_t(b)), ids_[b])) {
+      const double x = site_mean(r, axis, nd[b]);
+      const int q = std::isfinite(x) ? parts->owner(x) : me;  // a non-finite cell stays, for locate() to name it
+      if (q == me) {
+        kept[b].push_back(std::move(r));
+      } else {
+        pack(r, index_t(b), to[std::size_t(q)]);
+        changed[b] = 1;
+      }
+    }
+  }
+  for (const std::vector<double>& m : parts->exchange(to))
+    unpack(m, nd, [&](index_t b, CellRecord r) {
+      kept[std::size_t(b)].push_back(std::move(r));
+      changed[std::size_t(b)] = 1;
+    });
+  for (std::size_t b = 0; b < B; ++b) {
+    if (!changed[b]) continue;
+    std::sort(kept[b].begin(), kept[b].end(), by_id);
+    ids_[b].clear();
+    for (const CellRecord& r : kept[b]) ids_[b].push_back(r.id);
+    batches_[b]->replace(batch_of(batch(index_t(b)).type_ptr(), kept[b]));
+  }
+}
+
 IbStepReport ImmersedBoundary::step() {
+  migrate();
   const AdaptiveStep& a = options_.adaptive;
   int refused = 0;
   for (;;) {
@@ -153,9 +279,26 @@ IbStepReport ImmersedBoundary::step() {
   }
 }
 
-index_t ImmersedBoundary::add(cells::Batch batch) { return keep(std::make_unique<CellBatchSet>(std::move(batch)), batches_); }
+index_t ImmersedBoundary::add(cells::Batch batch) {
+  std::vector<index_t> ids(static_cast<std::size_t>(batch.size()));
+  std::iota(ids.begin(), ids.end(), index_t(0));
+  const FluidDecomposition* parts = fluid_->parts();
+  if (!parts) {
+    ids_.push_back(ids);
+    whole_body_.emplace_back();
+    return keep(std::make_unique<CellBatchSet>(std::move(batch)), batches_);
+  }
+  const std::vector<CellRecord> whole = cell_records(batch, ids);
+  whole_body_.push_back(batch.body_force());
+  ids_.emplace_back();
+  const index_t b = keep(std::make_unique<CellBatchSet>(std::move(batch)), batches_);
+  own(b, whole);
+  return b;
+}
 
 index_t ImmersedBoundary::add(TetheredPoints p) {
+  require(!fluid_->parts() || fluid_->parts()->processes() == 1, "tethered points '" + p.name + "': processes",
+          fluid_->parts() ? fluid_->parts()->processes() : 1, "tethered point sets run on one process only");
   require(!p.frame || !fluid_->parts(), "tethered points '" + p.name + "': frame", "true",
           "a frame (Chapter 3's capillary) runs on one process only");
   if (p.frame)
@@ -166,7 +309,11 @@ index_t ImmersedBoundary::add(TetheredPoints p) {
   return keep(std::make_unique<TetheredPointSet>(std::move(p), options_.coupling == Coupling::midpoint), points_);
 }
 
-index_t ImmersedBoundary::add(LdsmShell shell) { return keep(std::make_unique<LdsmShellSet>(std::move(shell)), shells_); }
+index_t ImmersedBoundary::add(LdsmShell shell) {
+  require(!fluid_->parts() || fluid_->parts()->processes() == 1, "LDSM shell: processes",
+          fluid_->parts() ? fluid_->parts()->processes() : 1, "LDSM shells run on one process only");
+  return keep(std::make_unique<LdsmShellSet>(std::move(shell)), shells_);
+}
 
 index_t ImmersedBoundary::add(HeldWall wall) {
   const std::string field = "held wall '" + wall.name + "'";
@@ -247,9 +394,7 @@ IbStepReport ImmersedBoundary::attempt() {
     if (parts)
       for (int a = 0; a < 3; ++a) {
         parts->sum_ghosts(f_[a]);
-        const double body = options_.body_force[a];
-        double* fa = ptr(f_[a]);
-        if (body != 0.0) for_each_index(index_t(f_[a].size()), [=] RBFIB_HD (index_t i) { fa[i] += body; });
+        if (options_.body_force[a] != 0.0) blas::shift(options_.body_force[a], f_[a]);
       }
     for (int a = 0; a < 3; ++a)
       if (!options_.body_force_density[a].empty()) blas::axpy(1.0, options_.body_force_density[a], f_[a]);

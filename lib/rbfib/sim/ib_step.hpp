@@ -44,6 +44,7 @@
 #include "rbfib/cells/batch.hpp"
 #include "rbfib/fluid/fluid_step.hpp"
 #include "rbfib/ib/interaction.hpp"
+#include "rbfib/sim/cell_owners.hpp"
 #include "rbfib/sim/cortex.hpp"
 #include "rbfib/sim/held_wall.hpp"
 #include "rbfib/sim/lagrangian.hpp"
@@ -126,7 +127,18 @@ class ImmersedBoundary {
   ImmersedBoundary(std::unique_ptr<FluidStep> fluid, IbOptions ib);
 
   /// Adds a batch of cells; returns its index. The batch's velocities are set at the next step.
+  /// On a split fluid every process adds the whole batch and keeps the cells whose centroid (the
+  /// mean of their data sites) lies in its planes (none is allowed); before each step a cell whose
+  /// centroid has crossed into another process's planes moves there (sim/cell_owners.hpp).
   index_t add(cells::Batch batch);
+  /// The index in the whole batch of each cell this process steps (one process: 0..N-1).
+  const std::vector<index_t>& cell_ids(index_t b) const { return ids_.at(b); }
+  /// The cells of batch b in the whole run (on one process: batch(b).size()).
+  index_t cells_in_run(index_t b) const;
+  /// One value per cell of batch b, given for this process's cells (in its batch's order), for
+  /// every cell of the run in the order of their indices (collective on a split fluid): per-cell
+  /// diagnostics that read the same whatever the number of processes.
+  std::vector<double> run_cell_values(index_t b, const std::vector<double>& mine) const;
   /// Adds a set of tethered points; returns its index. Throws InputError naming the field for
   /// mismatched sizes, non-finite values or negative constants.
   index_t add(TetheredPoints points);
@@ -170,7 +182,10 @@ class ImmersedBoundary {
   /// data-site state (X and U), each point set's positions, each shell's vertices and the clock
   /// (its t is the fluid state's). The rest (operators, factorizations, workspaces) is rebuilt from
   /// the setup, so restoring this into an ImmersedBoundary built the same way continues the run
-  /// bit for bit.
+  /// bit for bit. On a split fluid carried() is collective and gives every process the whole
+  /// run's state (the fluid gathered, each batch's cells in the order of their indices), the same
+  /// as one process's; restore() takes such a state on any number of processes and keeps this
+  /// process's part (the cells by centroid; their body forces those given to add()).
   struct Carried {
     FluidState fluid;
     std::vector<dvec> batches;  ///< each batch's state storage (n_d x 6N, column-major)
@@ -216,12 +231,18 @@ class ImmersedBoundary {
     double bound;
   };
   void set_level(int level);
+  /// On a split fluid: the cells whose centroid left this process's planes go to their owner.
+  void migrate();
+  /// Keeps this process's cells of a whole batch (records with indices 0..N-1) in batch b.
+  void own(index_t b, const std::vector<CellRecord>& whole);
 
   std::unique_ptr<FluidStep> fluid_;
   ib::Interaction ib_;
   IbOptions options_;
   std::vector<std::unique_ptr<LagrangianSet>> sets_;  // in the order added: the order of spreading
   std::vector<CellBatchSet*> batches_;
+  std::vector<std::vector<index_t>> ids_;            // per batch: each cell's index in the whole batch
+  std::vector<std::vector<double>> whole_body_;      // per batch, split fluid: every cell's body force (3N)
   std::vector<TetheredPointSet*> points_;
   std::vector<LdsmShellSet*> shells_;
   std::vector<CortexSet*> cortices_;

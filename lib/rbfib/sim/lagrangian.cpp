@@ -65,7 +65,15 @@ void spread_into(ib::Interaction& ib, ib::Spreading algorithm, const dvec& X, co
 
 // ---- cell batches ---------------------------------------------------------------------------
 
+void CellBatchSet::replace(cells::Batch batch) {
+  batch_ = std::move(batch);
+  forces_ = cells::CellForces{};
+  predicted_ = false;
+  U_.clear();
+}
+
 void CellBatchSet::locate(ib::Interaction& ib) {
+  if (batch_.size() == 0) return;
   // X^n, read in place from the state, checked finite, then sorted once.
   const index_t nd = batch_.type().n_data(), N = batch_.size(), n = N * nd;
   const double* X = ptr(batch_.state().storage());
@@ -77,10 +85,13 @@ void CellBatchSet::locate(ib::Interaction& ib) {
   predicted_ = false;
 }
 
-void CellBatchSet::interpolate_start(ib::Interaction& ib, const VectorField& u) { interpolate_at(ib, start_, u, U_, name()); }
+void CellBatchSet::interpolate_start(ib::Interaction& ib, const VectorField& u) {
+  if (batch_.size() > 0) interpolate_at(ib, start_, u, U_, name());
+}
 
 void CellBatchSet::predict(double c) {
   // X* = X^n + c U^n beside the batch's state, with U^n after it (the velocities of dissipation).
+  if (batch_.size() == 0) return;
   const linalg::DeviceMatrix& state = batch_.state();
   star_.resize(state.rows(), state.cols());
   const auto n = static_cast<std::ptrdiff_t>(U_.size());
@@ -92,6 +103,10 @@ void CellBatchSet::predict(double c) {
 }
 
 double CellBatchSet::compute_force() {
+  if (batch_.size() == 0) {
+    timings_ = cells::ForceTimings{};
+    return 0.0;
+  }
   if (predicted_)
     cells::compute_forces(batch_, star_.view(), forces_, &timings_);
   else
@@ -100,16 +115,19 @@ double CellBatchSet::compute_force() {
 }
 
 void CellBatchSet::spread(ib::Interaction& ib, ib::Spreading algorithm, VectorField& f, VectorField& scratch) {
+  if (batch_.size() == 0) return;
   spread_into(ib, algorithm, forces_.positions.storage(), forces_.force.storage(), sample_, f, scratch);
 }
 
 void CellBatchSet::interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) {
+  if (batch_.size() == 0) return;
   if (at_predicted) ib.sort(ptr(star_.storage()), index_t(U_.size()) / 3, start_);  // X*, the first 3 n_d N entries
   interpolate_at(ib, start_, u, U_, name());
 }
 
 void CellBatchSet::update(double dt, const std::array<double, 3>& u_frame) {
   // X^{n+1} = X^n + dt (U + u_frame) in place, then U into the velocity block.
+  if (batch_.size() == 0) return;
   const auto n = static_cast<std::ptrdiff_t>(U_.size());
   double* X = ptr(batch_.state().storage());
   if (moving(u_frame))

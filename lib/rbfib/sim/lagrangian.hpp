@@ -88,6 +88,9 @@ class CellBatchSet final : public LagrangianSet {
   cells::Batch& batch() { return batch_; }
   const cells::Batch& batch() const { return batch_; }
   const cells::CellForces& forces() const { return forces_; }
+  /// Another set of cells of the type (cells moving between processes, sim/cell_owners.hpp); the
+  /// last force call's results are dropped. A batch of no cells does nothing in the step.
+  void replace(cells::Batch batch);
 
  private:
   cells::Batch batch_;

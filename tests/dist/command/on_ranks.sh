@@ -1,0 +1,37 @@
+#!/bin/sh
+# The rbfib command on several processes against one (apps/rbfib): a short run of a shortened
+# scenes/two_red_cells.yaml (two red cells, one in each process's slab; no snapshots) on 1 and on 2
+# processes gives the same diagnostics table (every column but the timings, as printed, 6
+# significant digits); each run's checkpoint continued on the other number of processes (2 -> 1,
+# 1 -> 2) gives the table of an uninterrupted run. (Three processes would own fewer planes than
+# the 15 of halo a red cell needs at h = 0.5 um: refused, named.) A scene with walls across z is
+# refused on 2 processes with exit status 2 and one line naming the field.
+#
+# usage: on_ranks.sh RBFIB MPIEXEC SCENE WORKDIR
+set -eu
+rbfib=$1 mpiexec=$2 scene=$3 work=$4
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+sed '/snapshot_every/d; s/diagnostics_every: 10/diagnostics_every: 2/' "$scene" > s.yaml
+columns() { cut -d, -f1-8,13- "$1/diagnostics.csv"; }  # not the seconds of the phases (9-12)
+same() {
+  if ! diff "$1" "$2" > diff.txt; then echo "FAIL: $3"; head -5 diff.txt; exit 1; fi
+}
+"$rbfib" run s.yaml --out one --until '1 us' > one.log
+"$mpiexec" -n 2 "$rbfib" run s.yaml --out two --until '1 us' > two.log
+columns one > one.csv; columns two > two.csv
+[ "$(wc -l < one.csv)" -eq 6 ] || { echo "FAIL: expected 5 rows of diagnostics"; cat one.csv; exit 1; }
+same one.csv two.csv "2 processes differ from one"
+cp -r one uninterrupted && "$rbfib" restart uninterrupted --until '2 us' > u.log
+"$rbfib" restart two --until '2 us' > r1.log
+"$mpiexec" -n 2 "$rbfib" restart one --until '2 us' > r3.log
+columns uninterrupted > u.csv; columns two > r1.csv; columns one > r3.csv
+[ "$(wc -l < u.csv)" -eq 11 ] || { echo "FAIL: expected 10 rows after the restart"; exit 1; }
+same u.csv r1.csv "a 2-process checkpoint continued on 1 process"
+same u.csv r3.csv "a 1-process checkpoint continued on 2 processes"
+# Walls across z: the multigrid path, one process only.
+sed 's/periodic: \[x, z\]/periodic: [x, y]/; s/^    y: {lower/    z: {lower/' s.yaml > walls_z.yaml
+status=0
+"$mpiexec" -n 2 "$rbfib" run walls_z.yaml --out walls_z > walls_z.out 2> walls_z.err || status=$?
+[ "$status" -eq 2 ] || { echo "FAIL: walls across z on 2 processes: exit status $status, expected 2"; exit 1; }
+[ "$(grep -c '^rbfib: grid.boundary' walls_z.err)" -eq 1 ] || { echo "FAIL: expected one line naming grid.boundary"; cat walls_z.err; exit 1; }
+echo "PASS: 1 and 2 processes agree; restarts 2 -> 1 and 1 -> 2 agree; walls across z refused"
