@@ -75,6 +75,25 @@ struct Processes {
     return nullptr;
 #endif
   }
+  /// What each process sent per step of this sitting (dist::Traffic), the largest over the
+  /// processes; one line (collective; empty on one process).
+  std::string traffic(const std::shared_ptr<const FluidDecomposition>& parts, long steps) const {
+#ifdef RBFIB_WITH_MPI
+    if (!parts || steps <= 0) return "";
+    const dist::Traffic& t = dist::traffic();
+    const double n = double(steps);
+    std::ostringstream s;
+    s << "communication per step, largest over the processes: halo " << comm->max(t.halo / n) << " bytes in "
+      << comm->max(double(t.halo_exchanges) / n) << " exchanges of "
+      << static_cast<const dist::SlabFluid&>(*parts).ghosts() << " planes a side, cells " << comm->max(t.cells / n)
+      << " bytes, FFT transposes " << comm->max(t.transposes / n) << " bytes in " << comm->max(double(t.transforms) / n)
+      << " transforms (from FFTW's local sizes), reductions " << comm->max(double(t.reductions) / n);
+    return s.str();
+#else
+    (void)parts, (void)steps;
+    return "";
+#endif
+  }
   /// Returns when every process has come here (the run's directory is ready).
   void wait_for_all(const std::shared_ptr<const FluidDecomposition>& parts) const {
     if (parts) parts->all(true);
@@ -249,6 +268,7 @@ int advance(const scene::Scene& s, const std::string& out, double until, const P
   run::Run run(s, o, h);
   if (!writer) {
     const run::Progress p = run.evolve();
+    procs.traffic(parts, p.sitting_steps);
     return p.status == run::RunStatus::stopped ? 3 : 0;
   }
   // The table as the run has it: its header and every row the checkpoint kept.
@@ -268,6 +288,7 @@ int advance(const scene::Scene& s, const std::string& out, double until, const P
   const run::Progress p = run.evolve();
   csv.flush();
   if (terminal) std::cout << "\n";
+  if (const std::string line = procs.traffic(parts, p.sitting_steps); !line.empty()) std::cout << line << std::endl;
   if (p.status == run::RunStatus::stopped) {
     std::cout << "rbfib: stopped: " << p.stop_message << "; the last good state is in " << checkpoint << std::endl;
     return 3;

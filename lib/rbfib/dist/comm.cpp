@@ -6,6 +6,11 @@
 
 namespace rbfib::dist {
 
+Traffic& traffic() {
+  static Traffic t;
+  return t;
+}
+
 void check(int mpi_result, const std::string& what) {
   if (mpi_result == MPI_SUCCESS) return;
   char text[MPI_MAX_ERROR_STRING];
@@ -40,6 +45,7 @@ namespace {
 template <class T>
 T reduce(MPI_Comm comm, T v, MPI_Datatype type, MPI_Op op) {
   T out{};
+  ++traffic().reductions;
   check(MPI_Allreduce(&v, &out, 1, type, op, comm), "MPI_Allreduce");
   return out;
 }
@@ -63,6 +69,7 @@ std::vector<std::vector<double>> Comm::exchange(const std::vector<std::vector<do
   for (int q = 0; q < size_; ++q) {
     send_at[q] = int(send.size());
     send.insert(send.end(), to[q].begin(), to[q].end());
+    if (q != rank_) traffic().cells += double(to[q].size() * sizeof(double));
   }
   int total = 0;
   for (int q = 0; q < size_; ++q) recv_at[q] = total, total += recv_counts[q];

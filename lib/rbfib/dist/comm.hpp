@@ -61,6 +61,16 @@ class Comm {
   int rank_ = 0, size_ = 1;
 };
 
+/// What this process has sent since the program started, by kind (bytes): the halo planes and the
+/// Lagrangian data moving between owners as the library sends them; the distributed transforms'
+/// transposes are FFTW's own messages, counted from its local sizes ((P - 1) / P of the rank's
+/// data per transform). For the communication model of bench_scale.
+struct Traffic {
+  double halo = 0, cells = 0, transposes = 0;  ///< bytes
+  long halo_exchanges = 0, transforms = 0, reductions = 0;
+};
+Traffic& traffic();
+
 /// Throws NumericalError(Cause::solver) naming `what` when an MPI call did not succeed.
 void check(int mpi_result, const std::string& what);
 

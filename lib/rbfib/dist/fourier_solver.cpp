@@ -75,6 +75,15 @@ FourierSolver::~FourierSolver() {
   fftw_free(work_);
 }
 
+void FourierSolver::count_transposes() const {
+  const int P = slabs_.comm().size();
+  if (P == 1) return;
+  // Each transposed transform sends the rank's complex data but the part it keeps: (P - 1) / P.
+  const double local = double(slabs_.local_size()) * 2 * sizeof(double);
+  traffic().transforms += 2;
+  traffic().transposes += 2 * local * double(P - 1) / double(P);
+}
+
 void FourierSolver::solve(const dvec& b, dvec& x) const {
   const index_t local = slabs_.local_size();
   require(static_cast<index_t>(b.size()) == local, name_ + ": right-hand side size", b.size(),
@@ -91,6 +100,7 @@ void FourierSolver::solve(const dvec& b, dvec& x) const {
     w[(k * nx + i) * ny + j] = linalg::complex(in[p] - mean, 0.0);
   });
   fftw_execute(static_cast<fftw_plan>(forward_));
+  count_transposes();  // this one and the backward transform's
   if (forward_y_) fftw_execute(static_cast<fftw_plan>(forward_y_));
 
   // This rank's modes: (k_x local, k_z, y), y fastest.

@@ -36,6 +36,7 @@ class FourierSolver {
   index_t first_mode() const { return first_mode_; }
 
  private:
+  void count_transposes() const;  // Traffic: the two transposes of one solve
   const Slabs& slabs_;
   StaggeredLaplacian lap_;
   double alpha_, beta_;

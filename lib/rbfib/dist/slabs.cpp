@@ -62,6 +62,12 @@ index_t Halo::plane_size_of(const dvec& extended, const char* what) const {
   return size / planes;
 }
 
+void Halo::count_exchange(index_t count) const {
+  if (slabs_.comm().size() == 1) return;  // to itself
+  ++traffic().halo_exchanges;
+  traffic().halo += 2.0 * double(count) * sizeof(double);
+}
+
 void Halo::fill(dvec& extended) const {
   const index_t ps = plane_size_of(extended, "halo fill");
   if (ghosts_ == 0) return;
@@ -69,6 +75,7 @@ void Halo::fill(dvec& extended) const {
   const index_t count = g * ps;
   double* e = ptr(extended);
   MPI_Comm comm = slabs_.comm().get();
+  count_exchange(count);
   // My bottom planes are the upper ghosts of the rank below; the rank above's are mine.
   check(MPI_Sendrecv(e + g * ps, int(count), MPI_DOUBLE, below_, 0, e + (g + n) * ps, int(count), MPI_DOUBLE, above_, 0,
                      comm, MPI_STATUS_IGNORE),
@@ -88,6 +95,7 @@ void Halo::sum(dvec& extended) const {
   double* e = ptr(extended);
   double* b = ptr(buffer_);
   MPI_Comm comm = slabs_.comm().get();
+  count_exchange(count);
   // My lower ghosts belong to the rank below's top planes; the rank above's lower ghosts to mine.
   check(MPI_Sendrecv(e, int(count), MPI_DOUBLE, below_, 2, b, int(count), MPI_DOUBLE, above_, 2, comm, MPI_STATUS_IGNORE),
         "halo sum (lower ghosts)");

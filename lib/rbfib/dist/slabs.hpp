@@ -68,6 +68,7 @@ class Halo {
 
  private:
   index_t plane_size_of(const dvec& extended, const char* what) const;
+  void count_exchange(index_t count) const;  // two messages of `count` doubles (Traffic)
   const Slabs& slabs_;
   int ghosts_;
   int below_, above_;
