@@ -94,9 +94,18 @@ struct Processes {
     return "";
 #endif
   }
-  /// Returns when every process has come here (the run's directory is ready).
-  void wait_for_all(const std::shared_ptr<const FluidDecomposition>& parts) const {
-    if (parts) parts->all(true);
+  /// Runs fn on process 0 (files) and returns when it has, on every process; its failure becomes
+  /// every process's.
+  template <class F>
+  void on_writer(const std::shared_ptr<const FluidDecomposition>& parts, F&& fn) const {
+    std::exception_ptr error;
+    if (writer()) try {
+        fn();
+      } catch (...) {
+        error = std::current_exception();
+      }
+    if (parts) parts->agree(error);
+    else if (error) std::rethrow_exception(error);
   }
 };
 
@@ -301,12 +310,11 @@ int advance(const scene::Scene& s, const std::string& out, double until, const P
 int run_scene(const scene::Scene& s, const std::string& out, double until, const Processes& procs) {
   check_memory(s);
   const std::shared_ptr<const FluidDecomposition> parts = procs.split(s);
-  if (procs.writer()) {
+  procs.on_writer(parts, [&] {
     std::filesystem::create_directories(out);
     std::ofstream(out + "/scene.yaml") << s.source;
     std::filesystem::remove(out + "/checkpoint.h5");  // a run starts afresh; `restart` continues
-  }
-  procs.wait_for_all(parts);
+  });
   return advance(s, out, until > 0 ? std::min(until, s.t_end) : s.t_end, procs, parts);
 }
 

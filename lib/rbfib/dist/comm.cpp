@@ -53,7 +53,6 @@ T reduce(MPI_Comm comm, T v, MPI_Datatype type, MPI_Op op) {
 
 double Comm::sum(double v) const { return reduce(comm_, v, MPI_DOUBLE, MPI_SUM); }
 double Comm::max(double v) const { return reduce(comm_, v, MPI_DOUBLE, MPI_MAX); }
-double Comm::min(double v) const { return reduce(comm_, v, MPI_DOUBLE, MPI_MIN); }
 index_t Comm::sum(index_t v) const {
   static_assert(sizeof(index_t) == sizeof(long long));
   return static_cast<index_t>(reduce(comm_, static_cast<long long>(v), MPI_LONG_LONG, MPI_SUM));

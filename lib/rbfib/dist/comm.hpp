@@ -32,7 +32,6 @@ class Comm {
 
   double sum(double v) const;
   double max(double v) const;
-  double min(double v) const;
   index_t sum(index_t v) const;
   /// true on every rank when `ok` is true on every rank (a stop agreed by all).
   bool all(bool ok) const;

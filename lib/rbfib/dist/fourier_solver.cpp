@@ -1,6 +1,5 @@
 #include "rbfib/dist/fourier_solver.hpp"
 
-#include "rbfib/core/constants.hpp"
 #include "rbfib/core/error.hpp"
 #include "rbfib/fluid/wall_modes.hpp"
 

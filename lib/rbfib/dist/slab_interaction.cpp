@@ -1,6 +1,5 @@
 #include "rbfib/dist/slab_interaction.hpp"
 
-#include "rbfib/core/error.hpp"
 
 #include <cmath>
 

@@ -30,7 +30,6 @@ class SlabInteraction {
   /// f = S F on this rank's planes (collective: the halo sum); the ghost planes of f are zero.
   void spread(const dvec& X, const dvec& F, std::array<dvec, 3>& f);
 
-  ib::Interaction& interaction() { return ib_; }
 
  private:
   const SlabFluid& fluid_;

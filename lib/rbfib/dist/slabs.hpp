@@ -63,8 +63,6 @@ class Halo {
   void fill(dvec& extended) const;
   /// Each ghost plane added into the plane its neighbour owns; the ghosts are then zero (collective).
   void sum(dvec& extended) const;
-  /// Bytes this rank sends in one fill() or one sum() of a field on the slabs' box.
-  index_t bytes_per_exchange() const { return 2 * index_t(ghosts_) * slabs_.plane_size() * index_t(sizeof(double)); }
 
  private:
   index_t plane_size_of(const dvec& extended, const char* what) const;

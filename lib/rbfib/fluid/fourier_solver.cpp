@@ -1,5 +1,4 @@
 #include "rbfib/fluid/fourier_solver.hpp"
-#include "rbfib/core/constants.hpp"
 
 #include "rbfib/core/error.hpp"
 #include "rbfib/fluid/poisson.hpp"

@@ -163,8 +163,9 @@ const VelocityBoundaryData& NavierStokesSolver::boundary_data(double t) const {
     data = zero_velocity_boundary(grid_);
   }
   const double shift = ops_.make_compatible(data);
-  // On a process's part the walls' outflow is a partial sum: only data without one is exact.
-  require(!parts_ || shift == 0.0, "fluid.boundary (normal wall velocity)", shift,
+  // On a process's part the walls' outflow is a partial sum: only data without one is exact. Agreed
+  // by all processes (one that refused alone would leave the others in the next exchange).
+  require(!parts_ || parts_->all(shift == 0.0), "fluid.boundary (normal wall velocity)", shift,
           "must be zero on a fluid split among processes");
   if (cache_.size() >= 4) cache_.erase(cache_.begin());
   cache_.emplace_back(t, std::move(data));

@@ -14,14 +14,19 @@ using clock_type = std::chrono::steady_clock;
 double seconds_between(clock_type::time_point a, clock_type::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
 /// Whether a cadence is due: by steps and simulated time counted from t = 0 (so that a continued
-/// run samples where an uninterrupted one does), by wall time from the last firing.
+/// run samples where an uninterrupted one does), by wall time from the last firing. On a split
+/// fluid a cadence by wall time fires on every process when it fires on any (one reduction), so
+/// that all go on to the same collective calls.
 class Due {
  public:
-  Due(const Cadence& c, double t, clock_type::time_point now) : c_(c), last_wall_(now) {
+  Due(const Cadence& c, double t, clock_type::time_point now, const FluidDecomposition* parts)
+      : c_(c), last_wall_(now), parts_(parts) {
     next_t_ = c.time > 0 ? (std::floor(t / c.time * (1 + 1e-12)) + 1) * c.time : INFINITY;
   }
   bool operator()(long step, double t, clock_type::time_point now) {
-    bool due = (c_.steps > 0 && step % c_.steps == 0) || (c_.wall > 0 && seconds_between(last_wall_, now) >= c_.wall);
+    bool by_wall = c_.wall > 0 && seconds_between(last_wall_, now) >= c_.wall;
+    if (parts_ && c_.wall > 0) by_wall = !parts_->all(!by_wall);
+    bool due = (c_.steps > 0 && step % c_.steps == 0) || by_wall;
     if (c_.time > 0 && t >= next_t_ * (1 - 1e-12)) {
       due = true;
       while (next_t_ <= t * (1 + 1e-12)) next_t_ += c_.time;
@@ -34,6 +39,7 @@ class Due {
   Cadence c_;
   double next_t_;
   clock_type::time_point last_wall_;
+  const FluidDecomposition* parts_;
 };
 
 }  // namespace
@@ -149,16 +155,21 @@ Progress Run::evolve(long max_steps) {
     return progress();
   }
   const auto start = clock_type::now();
-  Due checkpoint_due(options_.checkpoint_every, ib_.time(), start), sample_due(options_.sample_every, ib_.time(), start),
-      snapshot_due(options_.snapshot_every, ib_.time(), start), progress_due(options_.progress_every, ib_.time(), start);
+  // On a split fluid a wall-clock decision (the sitting's end, a cadence by wall time) is taken
+  // when any process takes it, so that all go on to the same collective calls; the progress lines
+  // (no collective) need no agreement.
+  const FluidDecomposition* parts = ib_.fluid().parts();
+  Due checkpoint_due(options_.checkpoint_every, ib_.time(), start, parts), sample_due(options_.sample_every, ib_.time(), start, parts),
+      snapshot_due(options_.snapshot_every, ib_.time(), start, parts), progress_due(options_.progress_every, ib_.time(), start, nullptr);
   const double end = std::min(options_.t_end, options_.until);
   long taken = 0;
-  // On a split fluid a wall-clock decision (the sitting's end, a cadence by wall time) is taken
-  // when any process takes it, so that all go on to the same collective calls.
-  const FluidDecomposition* parts = ib_.fluid().parts();
-  auto any = [parts](bool v) { return parts ? !parts->all(!v) : v; };
+  auto sitting_over = [&] {
+    if (!std::isfinite(options_.sitting)) return false;
+    const bool over = seconds_between(start, clock_type::now()) >= options_.sitting;
+    return parts ? !parts->all(!over) : over;
+  };
   try {
-    while (ib_.time() < end * (1 - 1e-12) && !any(seconds_between(start, clock_type::now()) >= options_.sitting)) {
+    while (ib_.time() < end * (1 - 1e-12) && !sitting_over()) {
       if (max_steps >= 0 && taken == max_steps) return progress();  // the caller steps again soon
       ++taken;
       const auto t0 = clock_type::now();
@@ -174,12 +185,12 @@ Progress Run::evolve(long max_steps) {
       try {  // a hook that measures the new state may find it broken (an inverted cell): say where
         if (sample_due(step, t, t1) || last) sample(&report);
         if (hooks_.after_step) hooks_.after_step(ib_, &report, record_.series);
-        if (hooks_.snapshot && any(snapshot_due(step, t, t1))) hooks_.snapshot(ib_);
+        if (hooks_.snapshot && snapshot_due(step, t, t1)) hooks_.snapshot(ib_);
       } catch (const NumericalError& e) {
         throw NumericalError(e.cause(), "after step " + to_text(step) + " at t = " + to_text(t) + " s: " + e.what());
       }
       if (last) record_.status = RunStatus::finished;
-      else if (any(checkpoint_due(step, t, t1))) checkpoint();
+      else if (checkpoint_due(step, t, t1)) checkpoint();
       if (hooks_.progress && progress_due(step, t, t1)) hooks_.progress(progress());
     }
   } catch (const NumericalError& e) {

@@ -1,5 +1,7 @@
 #include "rbfib/sim/cell_owners.hpp"
 
+#include <thrust/copy.h>
+
 #include <cmath>
 
 namespace rbfib::sim {
@@ -15,7 +17,7 @@ std::vector<double> state_of(const std::vector<CellRecord>& cells, index_t nd) {
   std::vector<double> state(static_cast<std::size_t>(6 * N * nd));
   for (index_t c = 0; c < N; ++c)
     for (int k = 0; k < 6; ++k) {
-      const index_t column = (k / 3) * 3 * N + (k % 3) * N + c;
+      const index_t column = k * N + c;  // X: a N + c, U: (3 + a) N + c
       const std::vector<double>& s = cells[static_cast<std::size_t>(c)].state;
       std::copy(s.begin() + k * nd, s.begin() + (k + 1) * nd, state.begin() + column * nd);
     }
@@ -38,7 +40,7 @@ std::vector<CellRecord> records_of(const std::vector<double>& state, const std::
     r.id = c;
     r.state.resize(static_cast<std::size_t>(6 * nd));
     for (int k = 0; k < 6; ++k) {
-      const index_t column = (k / 3) * 3 * N + (k % 3) * N + c;
+      const index_t column = k * N + c;  // X: a N + c, U: (3 + a) N + c
       std::copy(state.begin() + column * nd, state.begin() + (column + 1) * nd, r.state.begin() + k * nd);
     }
     for (int d = 0; d < 3; ++d) r.body[d] = body[static_cast<std::size_t>(d * N + c)];
@@ -50,6 +52,20 @@ double site_mean(const CellRecord& cell, int axis, index_t nd) {
   double s = 0;
   for (index_t i = 0; i < nd; ++i) s += cell.state[static_cast<std::size_t>(axis * nd + i)];
   return std::isfinite(s) ? s / double(nd) : NAN;
+}
+
+std::vector<double> site_means(const cells::Batch& batch, int axis) {
+  const index_t nd = batch.type().n_data(), N = batch.size();
+  const dvec& state = batch.state().storage();
+  std::vector<double> x(static_cast<std::size_t>(nd * N));  // columns axis N + c, c < N: contiguous
+  thrust::copy(state.begin() + axis * N * nd, state.begin() + (axis + 1) * N * nd, x.begin());
+  std::vector<double> mean(static_cast<std::size_t>(N));
+  for (index_t c = 0; c < N; ++c) {
+    double s = 0;
+    for (index_t i = 0; i < nd; ++i) s += x[static_cast<std::size_t>(c * nd + i)];
+    mean[static_cast<std::size_t>(c)] = std::isfinite(s) ? s / double(nd) : NAN;
+  }
+  return mean;
 }
 
 void pack(const CellRecord& cell, index_t batch, std::vector<double>& message) {

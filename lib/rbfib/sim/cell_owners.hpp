@@ -30,6 +30,9 @@ std::vector<double> state_of(const std::vector<CellRecord>& cells, index_t n_dat
 std::vector<CellRecord> records_of(const std::vector<double>& state, const std::vector<double>& body, index_t n_data);
 /// The mean of the cell's data-site coordinates along `axis` (NaN if any is not finite).
 double site_mean(const CellRecord& cell, int axis, index_t n_data);
+/// The same for every cell of a batch, from its positions' `axis` block alone (one host copy of
+/// n_d N values).
+std::vector<double> site_means(const cells::Batch& batch, int axis);
 
 /// Appends (batch, id, state, body) to a message; reads them back from a message of such entries.
 void pack(const CellRecord& cell, index_t batch, std::vector<double>& message);

@@ -73,11 +73,6 @@ ImmersedBoundary::ImmersedBoundary(std::unique_ptr<FluidStep> fluid, IbOptions i
 }
 
 namespace {
-std::vector<double> host(const dvec& v) {
-  std::vector<double> h(v.size());
-  thrust::copy(v.begin(), v.end(), h.begin());
-  return h;
-}
 bool by_id(const CellRecord& a, const CellRecord& b) { return a.id < b.id; }
 }  // namespace
 
@@ -122,20 +117,24 @@ void ImmersedBoundary::restore(const Carried& whole) {
   // On a split fluid: this process's part of the whole run's state.
   const FluidDecomposition* parts = fluid_->parts();
   const bool split = parts != nullptr;
-  Carried part;
+  Carried part;                             // the fluid's part and the Lagrangian sets (no cells)
+  std::vector<std::vector<CellRecord>> cells;  // each batch's cells in the whole run, owned after the checks
   if (split) {
-    part = whole;
     const MacOperators& ops = fluid_->operators();
     for (int a = 0; a < 3; ++a) part.fluid.u[a] = parts->extend(ops.component_box(a), whole.fluid.u[a]);
     part.fluid.p = parts->extend(ops.scalar_box(), whole.fluid.p);
     for (int k = 0; k < 2; ++k)
       if (!whole.fluid.phi[k].empty()) part.fluid.phi[k] = parts->extend(ops.scalar_box(), whole.fluid.phi[k]);
+    part.fluid.t = whole.fluid.t;
+    part.points = whole.points;
+    part.shells = whole.shells;
+    part.cortices = whole.cortices;
+    part.clock = whole.clock;
     for (std::size_t b = 0; b < batches_.size(); ++b) {
       const index_t nd = batch(index_t(b)).type().n_data(), N = index_t(whole_body_[b].size()) / 3;
       require(index_t(whole.batches[b].size()) == 6 * nd * N, "checkpoint: batch " + to_text(b) + " size", whole.batches[b].size(),
               "must equal this setup's " + to_text(6 * nd * N));
-      own(index_t(b), records_of(host(whole.batches[b]), whole_body_[b], nd));
-      part.batches[b] = batch(index_t(b)).state().storage();
+      cells.push_back(records_of(std::vector<double>(whole.batches[b].begin(), whole.batches[b].end()), whole_body_[b], nd));
     }
   }
   const Carried& c = split ? part : whole;
@@ -149,7 +148,7 @@ void ImmersedBoundary::restore(const Carried& whole) {
             c.fluid.u[a].size(), "must equal this grid's " + to_text(now.u[a].size()));
   require(c.fluid.p.size() == now.p.size(), "checkpoint: pressure size", c.fluid.p.size(),
           "must equal this grid's " + to_text(now.p.size()));
-  for (std::size_t b = 0; b < batches_.size(); ++b)
+  for (std::size_t b = 0; b < batches_.size() && !split; ++b)
     require(c.batches[b].size() == batch(index_t(b)).state().storage().size(), "checkpoint: batch " + to_text(b) + " size",
             c.batches[b].size(), "must equal this setup's " + to_text(batch(index_t(b)).state().storage().size()));
   for (std::size_t p = 0; p < points_.size(); ++p)
@@ -167,7 +166,9 @@ void ImmersedBoundary::restore(const Carried& whole) {
   fluid_->state() = c.fluid;
   for (std::size_t q = 0; q < shells_.size(); ++q) shells_[q]->shell().X = c.shells[q];
   for (std::size_t q = 0; q < cortices_.size(); ++q) cortices_[q]->cortex().X = c.cortices[q];
-  for (std::size_t b = 0; b < batches_.size(); ++b) batch(index_t(b)).state().storage() = c.batches[b];
+  for (std::size_t b = 0; b < batches_.size(); ++b)
+    if (split) own(index_t(b), cells[b]);
+    else batch(index_t(b)).state().storage() = c.batches[b];
   for (std::size_t p = 0; p < points_.size(); ++p) points_[p]->points().X = c.points[p];
   steps_ = c.clock.step;
   level_ = c.clock.level;
@@ -222,28 +223,30 @@ void ImmersedBoundary::migrate() {
   const std::size_t B = batches_.size();
   std::vector<std::vector<double>> to(std::size_t(parts->processes()));
   std::vector<std::vector<CellRecord>> kept(B);
-  std::vector<char> changed(B, 0);
+  std::vector<char> left(B, 0);
   std::vector<index_t> nd(B);
   for (std::size_t b = 0; b < B; ++b) {
     nd[b] = batch(index_t(b)).type().n_data();
-    for (CellRecord& r : cell_records(batch(index_t(b)), ids_[b])) {
-      const double x = site_mean(r, axis, nd[b]);
-      const int q = std::isfinite(x) ? parts->owner(x) : me;  // a non-finite cell stays, for locate() to name it
-      if (q == me) {
-        kept[b].push_back(std::move(r));
-      } else {
-        pack(r, index_t(b), to[std::size_t(q)]);
-        changed[b] = 1;
-      }
+    // Owners from the centroids alone; the cells' whole state is read only when one leaves.
+    const std::vector<double> x = site_means(batch(index_t(b)), axis);
+    std::vector<int> owner(x.size());
+    for (std::size_t c = 0; c < x.size(); ++c) {
+      owner[c] = std::isfinite(x[c]) ? parts->owner(x[c]) : me;  // a non-finite cell stays, for locate() to name it
+      left[b] |= owner[c] != me;
     }
+    if (!left[b]) continue;
+    std::vector<CellRecord> all = cell_records(batch(index_t(b)), ids_[b]);
+    for (std::size_t c = 0; c < all.size(); ++c)
+      if (owner[c] == me) kept[b].push_back(std::move(all[c]));
+      else pack(all[c], index_t(b), to[std::size_t(owner[c])]);
   }
+  std::vector<std::vector<CellRecord>> incoming(B);
   for (const std::vector<double>& m : parts->exchange(to))
-    unpack(m, nd, [&](index_t b, CellRecord r) {
-      kept[std::size_t(b)].push_back(std::move(r));
-      changed[std::size_t(b)] = 1;
-    });
+    unpack(m, nd, [&](index_t b, CellRecord r) { incoming[std::size_t(b)].push_back(std::move(r)); });
   for (std::size_t b = 0; b < B; ++b) {
-    if (!changed[b]) continue;
+    if (!left[b] && incoming[b].empty()) continue;
+    if (!left[b]) kept[b] = cell_records(batch(index_t(b)), ids_[b]);
+    for (CellRecord& r : incoming[b]) kept[b].push_back(std::move(r));
     std::sort(kept[b].begin(), kept[b].end(), by_id);
     ids_[b].clear();
     for (const CellRecord& r : kept[b]) ids_[b].push_back(r.id);
