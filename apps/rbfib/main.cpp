@@ -84,8 +84,8 @@ struct Processes {
     const double n = double(steps);
     std::ostringstream s;
     s << "communication per step, largest over the processes: halo " << comm->max(t.halo / n) << " bytes in "
-      << comm->max(double(t.halo_exchanges) / n) << " exchanges of "
-      << static_cast<const dist::SlabFluid&>(*parts).ghosts() << " planes a side, cells " << comm->max(t.cells / n)
+      << comm->max(double(t.halo_exchanges) / n) << " exchanges (the fluid's " << dist::SlabFluid::fluid_reach
+      << " planes a side, the cells' " << static_cast<const dist::SlabFluid&>(*parts).ghosts() << "), cells " << comm->max(t.cells / n)
       << " bytes, FFT transposes " << comm->max(t.transposes / n) << " bytes in " << comm->max(double(t.transforms) / n)
       << " transforms (from FFTW's local sizes), reductions " << comm->max(double(t.reductions) / n);
     return s.str();

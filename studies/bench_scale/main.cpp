@@ -90,8 +90,8 @@ double match(const std::string& text, const std::string& pattern) {
   return std::stod(m[1].str());
 }
 
-/// Runs `rbfib run` on `processes` processes (one: without mpiexec) and reads its output.
-Outcome run_command(const std::string& scene, int processes, const std::string& dir) {
+/// The shell command that runs `rbfib run` on `processes` processes (one: without mpiexec) in dir.
+std::string command_in(const std::string& scene, int processes, const std::string& dir) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/scene.yaml") << scene;
@@ -99,7 +99,14 @@ Outcome run_command(const std::string& scene, int processes, const std::string& 
   if (processes > 1)
     cmd += "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 " +
            std::string(RBFIB_MPIEXEC) + " -n " + to_text(processes) + " ";
-  cmd += std::string(RBFIB_COMMAND) + " run " + dir + "/scene.yaml --out " + dir + "/out > " + dir + "/log.txt 2>&1";
+  return cmd + std::string(RBFIB_COMMAND) + " run " + dir + "/scene.yaml --out " + dir + "/out > " + dir + "/log.txt 2>&1";
+}
+
+/// Runs `rbfib run` on `processes` processes and reads its output; with `beside`, a second
+/// one-process run of the same scene at the same time (the machine's own ceiling for two).
+Outcome run_command(const std::string& scene, int processes, const std::string& dir, bool beside = false) {
+  std::string cmd = command_in(scene, processes, dir);
+  if (beside) cmd = "(" + cmd + ") & (" + command_in(scene, 1, dir + "_beside") + ") & wait";
   const int status = std::system(cmd.c_str());
   const std::string log = slurp(dir + "/log.txt");
   if (status != 0) throw std::runtime_error("rbfib run on " + to_text(processes) + " processes failed (" + dir + "/log.txt): " + log.substr(0, 400));
@@ -108,7 +115,7 @@ Outcome run_command(const std::string& scene, int processes, const std::string& 
   o.seconds_per_step = seconds / steps;
   o.halo = match(log, "halo ([0-9.e+-]+) bytes");
   o.halo_exchanges = match(log, "bytes in ([0-9.e+-]+) exchanges");
-  o.ghosts = match(log, "exchanges of ([0-9]+) planes");
+  o.ghosts = match(log, "the cells' ([0-9]+)\\)");
   o.cells = match(log, "cells ([0-9.e+-]+) bytes");
   o.transposes = match(log, "FFT transposes ([0-9.e+-]+) bytes");
   o.transforms = match(log, "bytes in ([0-9.e+-]+) transforms");
@@ -154,13 +161,19 @@ int main(int argc, char** argv) {
     struct Config {
       std::string label;
       int processes, tx, tz;
+      bool beside = false;
     };
-    const std::vector<Config> configs = {{"2x box, 1 process", 1, 2, 1}, {"4x box, 2 processes", 2, 2, 2}, {"4x box, 1 process", 1, 2, 2}};
+    // The last: the first run twice at once, each on its own core, no communication: what two
+    // processes of this machine reach when they share only its memory and caches (the ceiling).
+    const std::vector<Config> configs = {{"2x box, 1 process", 1, 2, 1},
+                                         {"4x box, 2 processes", 2, 2, 2},
+                                         {"4x box, 1 process", 1, 2, 2},
+                                         {"2x box, 1 process, two at once", 1, 2, 1, true}};
     std::vector<std::vector<Outcome>> out(configs.size());
     for (int r = 0; r < s.repeats; ++r)
       for (std::size_t c = 0; c < configs.size(); ++c) {
         const Config& k = configs[c];
-        out[c].push_back(run_command(scene_text(k.tx, k.tz, s), k.processes, opt.out_dir + "/run_" + to_text(c)));
+        out[c].push_back(run_command(scene_text(k.tx, k.tz, s), k.processes, opt.out_dir + "/run_" + to_text(c), k.beside));
         st::log(opt, k.label + ", repeat " + to_text(r + 1) + ": " + to_text(out[c].back().seconds_per_step) + " s per step");
       }
     auto median_of = [&](std::size_t c, double Outcome::*f) {
@@ -178,23 +191,28 @@ int main(int argc, char** argv) {
       t[c] = median_of(c, &Outcome::seconds_per_step);
       double lo = INFINITY, hi = 0;
       for (const Outcome& o : out[c]) lo = std::min(lo, o.seconds_per_step), hi = std::max(hi, o.seconds_per_step);
-      const double diff = std::abs(out[c].front().max_velocity / out[2].front().max_velocity - 1);
+      const double diff = std::abs(out[c].front().max_velocity / out[k.tz == 2 ? 2 : 0].front().max_velocity - 1);
       std::ostringstream grid;
       grid << std::lround(16 * k.tx / s.h) << " x " << n_y << " x " << std::lround(16 * k.tz / s.h);
       runs["rows"].push(row({k.label, double(k.processes), double(8 * k.tx * k.tz), grid.str(), number(t[c]), number(lo), number(hi),
                              number(median_of(c, &Outcome::share_cells)), number(out[c].front().max_velocity),
-                             c == 0 ? st::Json() : number(diff)}));
+                             c == 0 || c == 2 ? st::Json() : number(diff)}));
     }
     st::Json& V = results["values"];
     V["weak_scaling_efficiency"] = number(t[0] / t[1]);
+    V["two_at_once_efficiency"] = number(t[0] / t[3]);  // the machine's ceiling for two processes
+    V["weak_scaling_over_ceiling"] = number(t[3] / t[1]);
     V["speedup_4x_box_one_to_two"] = number(t[2] / t[1]);
     V["max_velocity_rel_diff_two_vs_one"] = number(std::abs(out[1].front().max_velocity / out[2].front().max_velocity - 1));
 
     // ---- Communication: measured (two processes) against the model (conventions) -----------------
     const Outcome& two = out[1].front();
     const double nx = std::round(32 / s.h), nz = std::round(32 / s.h), G = two.ghosts, Pm = 2;
-    const double E = 11, solves = 4;
-    const double halo_model = E * 2 * G * nx * n_y * 8;
+    // Backward-forward Euler, the seed's coupling: the fluid fills 8 fields on its 2 planes a side
+    // (4 solutions, u, v, w, p at the stage's end); the cells' side widens u twice ((a) and (f), 3
+    // components each) and sums the 3 spread components on G planes a side.
+    const double E_fluid = 8, E_cells = 9, g = 2, solves = 4;
+    const double halo_model = (E_fluid * g + E_cells * G) * 2 * nx * n_y * 8;
     const double transposes_model = solves * 2 * (nz / Pm) * nx * n_y * 16 * (Pm - 1) / Pm;
     st::Json comm = st::table({"kind", "measured_bytes_per_step", "model_bytes_per_step", "measured_over_model", "messages_per_step"},
                               {"", "B", "B", "", ""});
@@ -219,7 +237,7 @@ int main(int argc, char** argv) {
                               {"", "s", "s", "s", "s", "s", "s", "", ""});
     for (double p : {2.0, 64.0, 1024.0}) {
       const double fluid = t2 * (1 - share), cells = t2 * share * largest(p) / largest(2);
-      const double halo = E * 2 * (alpha + G * nx * n_y * 8 / beta);
+      const double halo = (E_fluid + E_cells) * 2 * alpha + halo_model / beta;
       const double trans = solves * 2 * ((p - 1) * alpha + local_transposed * (p - 1) / p / beta);
       const double red = two.reductions * 2 * std::log2(p) * alpha;
       const double total = fluid + cells + halo + trans + red;

@@ -7,20 +7,52 @@
 #include <thrust/inner_product.h>
 #include <thrust/transform_reduce.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace rbfib::dist {
 
+namespace {
+/// This rank's planes of `grid` with `ghosts` planes a side.
+MacGrid slab_of(const MacGrid& grid, const Slabs& slabs, int ghosts) {
+  MacGrid g = grid;
+  const double h = grid.h(2);
+  g.cells[2] = slabs.planes() + 2 * ghosts;
+  g.length[2] = g.cells[2] * h;
+  g.origin[2] = grid.origin[2] + (slabs.first() - ghosts) * h;
+  return g;
+}
+}  // namespace
+
 SlabFluid::SlabFluid(const MacGrid& grid, const Comm& comm, int ghosts)
-    : grid_(grid), local_(grid), comm_(comm), slabs_(grid.scalar(), comm, "grid"), ghosts_(ghosts) {
+    : grid_(grid), comm_(comm), slabs_(grid.scalar(), comm, "grid"), wide_ghosts_(std::max(ghosts, int(fluid_reach))) {
   require(grid.dims == 3 && grid.periodic(0) && grid.periodic(2), "grid.boundary", "walls across x or z",
           "a fluid on several ranks needs x and z periodic (the Fourier solvers); walls across x or z need the "
           "multigrid path, which runs on one process");
-  halo_ = std::make_unique<Halo>(slabs_, ghosts, "grid.cells.z");
-  const double h = grid.h(2);
-  local_.cells[2] = slabs_.planes() + 2 * ghosts;
-  local_.length[2] = local_.cells[2] * h;
-  local_.origin[2] = grid.origin[2] + (slabs_.first() - ghosts) * h;
+  halo_ = std::make_unique<Halo>(slabs_, ghosts_, "grid.cells.z");
+  wide_halo_ = std::make_unique<Halo>(slabs_, wide_ghosts_, "grid.cells.z");
+  local_ = slab_of(grid, slabs_, ghosts_);
+  wide_ = slab_of(grid, slabs_, wide_ghosts_);
+}
+
+void SlabFluid::widen(const dvec& local, dvec& wide) const {
+  const index_t n = slabs_.planes(), g = ghosts_, G = wide_ghosts_;
+  require(static_cast<index_t>(local.size()) % (n + 2 * g) == 0, "SlabFluid::widen: field size", local.size(),
+          "must be whole planes of the local grid");
+  const index_t ps = static_cast<index_t>(local.size()) / (n + 2 * g);
+  wide.resize(static_cast<std::size_t>((n + 2 * G) * ps));
+  thrust::copy(local.begin() + g * ps, local.begin() + (g + n) * ps, wide.begin() + G * ps);
+  wide_halo_->fill(wide);
+}
+
+void SlabFluid::narrow_sum(dvec& wide, dvec& local) const {
+  const index_t n = slabs_.planes(), g = ghosts_, G = wide_ghosts_;
+  require(static_cast<index_t>(wide.size()) % (n + 2 * G) == 0, "SlabFluid::narrow_sum: field size", wide.size(),
+          "must be whole planes of the Lagrangian grid");
+  wide_halo_->sum(wide);
+  const index_t ps = static_cast<index_t>(wide.size()) / (n + 2 * G);
+  local.assign(static_cast<std::size_t>((n + 2 * g) * ps), 0.0);
+  thrust::copy(wide.begin() + G * ps, wide.begin() + (G + n) * ps, local.begin() + g * ps);
 }
 
 Box SlabFluid::global_box(const Box& local_box) const {

@@ -24,16 +24,18 @@ class SlabInteraction {
   /// the rank that owns it: its reach plus the kernel's half support, plus one for the staggering.
   static int ghosts_needed(double beyond, double h, ib::Kernel kernel);
 
-  /// U = I u at this rank's points; u: the local grid's velocity, ghosts filled (collective: a
-  /// point beyond the slab throws InputError on every rank).
+  /// U = I u at this rank's points; u: the local grid's velocity (widened here to the Lagrangian
+  /// grid; collective: a point beyond the slab throws InputError on every rank).
   void interpolate(const dvec& X, const std::array<dvec, 3>& u, dvec& U);
-  /// f = S F on this rank's planes (collective: the halo sum); the ghost planes of f are zero.
+  /// f = S F on this rank's planes of the local grid (collective: the halo sum); the ghost planes
+  /// of f are zero.
   void spread(const dvec& X, const dvec& F, std::array<dvec, 3>& f);
 
 
  private:
   const SlabFluid& fluid_;
-  ib::Interaction ib_;
+  ib::Interaction ib_;  // on the Lagrangian grid
+  std::array<dvec, 3> wide_;
 };
 
 }  // namespace rbfib::dist

@@ -31,8 +31,18 @@ class FluidDecomposition {
   /// Adds the ghost planes of a field of the local grid into the planes their owners hold, then
   /// zeroes them (spreading's counterpart of fill).
   virtual void sum_ghosts(dvec& field) const = 0;
-  /// The split axis and its number of cells on the whole grid: the local grid is a window of it
-  /// (ib::Interaction::set_window).
+  /// The grid the Lagrangian side sees: this process's part with the halo its cells reach beyond
+  /// it, at least the local grid's (the fluid steps only the planes its stencils need, the
+  /// Lagrangian halo is only filled and summed). Interpolation reads a velocity widened to it;
+  /// spreading writes forces on it, which narrow_sum() brings back to the local grid.
+  virtual const MacGrid& lagrangian_grid() const = 0;
+  /// A field of the local grid on the Lagrangian grid, its ghost planes filled from their owners.
+  virtual void widen(const dvec& local, dvec& wide) const = 0;
+  /// A field spread on the Lagrangian grid: its ghost planes added into their owners' planes, then
+  /// its owned planes as a field of the local grid (ghost planes zero); `wide` is left summed.
+  virtual void narrow_sum(dvec& wide, dvec& local) const = 0;
+  /// The split axis and its number of cells on the whole grid: the Lagrangian grid is a window of
+  /// it (ib::Interaction::set_window).
   virtual int split_axis() const = 0;
   virtual int split_cells() const = 0;
   /// The direct (Fourier) solve of alpha I~ + beta L on the global box of which `local_box` is this

@@ -24,7 +24,14 @@ double seconds_since(clock_type::time_point& t0) {
   t0 = t1;
   return s;
 }
-std::array<Box, 3> component_boxes(const MacOperators& ops) {
+/// The boxes the Lagrangian sets interpolate from and spread into: the fluid's, or on a split fluid
+/// those of the wider grid its cells reach (FluidDecomposition::lagrangian_grid).
+std::array<Box, 3> lagrangian_boxes(const FluidStep& fluid) {
+  if (const FluidDecomposition* parts = fluid.parts()) {
+    const MacGrid& g = parts->lagrangian_grid();
+    return {g.component(0), g.component(1), g.component(2)};
+  }
+  const MacOperators& ops = fluid.operators();
   return {ops.component_box(0), ops.component_box(1), ops.component_box(2)};
 }
 }  // namespace
@@ -44,11 +51,11 @@ ImmersedBoundary::ImmersedBoundary(const MacGrid& grid, FluidParameters fluid, N
 
 ImmersedBoundary::ImmersedBoundary(std::unique_ptr<FluidStep> fluid, IbOptions ib)
     : fluid_(std::move(fluid)),
-      ib_(component_boxes(fluid_->operators()), ib.kernel),
+      ib_(lagrangian_boxes(*fluid_), ib.kernel),
       options_(std::move(ib)) {
   require(fluid_->grid().dims == 3, "grid.dims", fluid_->grid().dims, "the immersed-boundary step needs a 3D grid");
-  // On one part of a split fluid, the grid is a window of the split axis: each point at its image
-  // nearest this process's part.
+  // On one part of a split fluid, the Lagrangian grid is a window of the split axis: each point at
+  // its image nearest this process's part.
   if (const FluidDecomposition* parts = fluid_->parts()) ib_.set_window(parts->split_axis(), parts->split_cells());
   require(options_.coupling != Coupling::midpoint || fluid_->has_midpoint_velocity(), "ib.coupling", to_string(options_.coupling),
           "needs Peskin's two-stage fluid scheme (its midpoint velocity), not " + fluid_->name());
@@ -368,15 +375,23 @@ IbStepReport ImmersedBoundary::attempt() {
     }
     parts->agree(error);
   };
+  // The velocity the Lagrangian sets interpolate: the fluid's, or on a split fluid the fluid's
+  // widened to the Lagrangian grid (collective: before the phase that may fail on one process).
+  auto lagrangian = [&](const VectorField& u) -> const VectorField& {
+    if (!parts) return u;
+    for (int a = 0; a < 3; ++a) parts->widen(u[a], u_wide_[a]);
+    return u_wide_;
+  };
   try {
     auto t0 = clock_type::now();
     // (a) U^n = I u^n at X^n; (b) X* = X^n + dt U^n (midpoint: X^{n+1/2} = X^n + dt/2 U^n;
     // forward Euler: neither, the forces act at X^n).
+    const VectorField& u_start = coupling == Coupling::forward_euler ? fluid_->state().u : lagrangian(fluid_->state().u);
     agreed([&] {
       for_each_set([&](LagrangianSet& s) {
         s.locate(ib_);
         if (coupling == Coupling::forward_euler) return;
-        s.interpolate_start(ib_, fluid_->state().u);
+        s.interpolate_start(ib_, u_start);
         s.predict(coupling == Coupling::midpoint ? 0.5 * dt : dt);
       });
       r.seconds_interpolation += seconds_since(t0);
@@ -389,14 +404,16 @@ IbStepReport ImmersedBoundary::attempt() {
     if (parts) r.elastic_energy = parts->sum(r.elastic_energy);
     r.seconds_forces = seconds_since(t0);
     // (d) f^{n+1} = S F^{n+1} from where the forces act, summed over the sets, plus the body force.
-    // A split fluid: the ghost planes summed into their owners before the body force is added.
-    const MacOperators& ops = fluid_->operators();
+    // A split fluid: spread on the Lagrangian grid, its ghost planes summed into their owners and
+    // the owned planes brought to the fluid's grid before the body force is added.
+    const std::array<Box, 3> boxes = lagrangian_boxes(*fluid_);
+    VectorField& spread_to = parts ? f_wide_ : f_;
     for (int a = 0; a < 3; ++a)
-      f_[a].assign(static_cast<std::size_t>(ops.component_box(a).size()), parts ? 0.0 : options_.body_force[a]);
-    agreed([&] { for_each_set([&](LagrangianSet& s) { s.spread(ib_, options_.spreading, f_, scratch_); }); });
+      spread_to[a].assign(static_cast<std::size_t>(boxes[a].size()), parts ? 0.0 : options_.body_force[a]);
+    agreed([&] { for_each_set([&](LagrangianSet& s) { s.spread(ib_, options_.spreading, spread_to, scratch_); }); });
     if (parts)
       for (int a = 0; a < 3; ++a) {
-        parts->sum_ghosts(f_[a]);
+        parts->narrow_sum(f_wide_[a], f_[a]);
         if (options_.body_force[a] != 0.0) blas::shift(options_.body_force[a], f_[a]);
       }
     for (int a = 0; a < 3; ++a)
@@ -437,7 +454,7 @@ IbStepReport ImmersedBoundary::attempt() {
     r.seconds_fluid = seconds_since(t0);  // with its checks and diagnostics
     // (f) U^{n+1} = I u^{n+1} at X^n (midpoint: U^{n+1/2} = I u^{n+1/2} at X^{n+1/2}, sorted once more);
     const bool midpoint = coupling == Coupling::midpoint;
-    const VectorField& u_final = midpoint ? fluid_->midpoint_velocity() : next.u;
+    const VectorField& u_final = lagrangian(midpoint ? fluid_->midpoint_velocity() : next.u);
     agreed([&] {
       for_each_set([&](LagrangianSet& s) { s.interpolate_end(ib_, u_final, midpoint); });
       r.seconds_interpolation += seconds_since(t0);

@@ -248,6 +248,7 @@ class ImmersedBoundary {
   std::vector<CortexSet*> cortices_;
   std::vector<HeldWallSet*> held_;
   VectorField f_, scratch_;  // the force density; a scratch field for the non-binned spreadings
+  VectorField u_wide_, f_wide_;  // split fluid: velocity and force on the Lagrangian grid
   long steps_ = 0;
   int level_ = 0, allowing_ = 0;  // adaptive step: current level, consecutive steps allowing a doubling
 };
