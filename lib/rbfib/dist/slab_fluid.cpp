@@ -37,9 +37,7 @@ SlabFluid::SlabFluid(const MacGrid& grid, const Comm& comm, int ghosts)
 
 void SlabFluid::widen(const dvec& local, dvec& wide) const {
   const index_t n = slabs_.planes(), g = ghosts_, G = wide_ghosts_;
-  require(static_cast<index_t>(local.size()) % (n + 2 * g) == 0, "SlabFluid::widen: field size", local.size(),
-          "must be whole planes of the local grid");
-  const index_t ps = static_cast<index_t>(local.size()) / (n + 2 * g);
+  const index_t ps = halo_->plane_size_of(local, "SlabFluid::widen");
   wide.resize(static_cast<std::size_t>((n + 2 * G) * ps));
   thrust::copy(local.begin() + g * ps, local.begin() + (g + n) * ps, wide.begin() + G * ps);
   wide_halo_->fill(wide);
@@ -47,10 +45,8 @@ void SlabFluid::widen(const dvec& local, dvec& wide) const {
 
 void SlabFluid::narrow_sum(dvec& wide, dvec& local) const {
   const index_t n = slabs_.planes(), g = ghosts_, G = wide_ghosts_;
-  require(static_cast<index_t>(wide.size()) % (n + 2 * G) == 0, "SlabFluid::narrow_sum: field size", wide.size(),
-          "must be whole planes of the Lagrangian grid");
+  const index_t ps = wide_halo_->plane_size_of(wide, "SlabFluid::narrow_sum");
   wide_halo_->sum(wide);
-  const index_t ps = static_cast<index_t>(wide.size()) / (n + 2 * G);
   local.assign(static_cast<std::size_t>((n + 2 * g) * ps), 0.0);
   thrust::copy(wide.begin() + G * ps, wide.begin() + (G + n) * ps, local.begin() + g * ps);
 }
@@ -66,10 +62,7 @@ Box SlabFluid::global_box(const Box& local_box) const {
 int SlabFluid::owner(double z) const {
   const int nz = grid_.cells[2];
   const int plane = int(std::floor((z - grid_.origin[2]) / grid_.h(2)));
-  const int wrapped = (plane % nz + nz) % nz;
-  for (int r = 0; r < comm_.size(); ++r)
-    if (wrapped >= slabs_.first(r) && wrapped < slabs_.first(r) + slabs_.planes(r)) return r;
-  throw InputError("SlabFluid::owner: z (cm)", to_text(z), "lies in no rank's planes");
+  return slabs_.owner((plane % nz + nz) % nz);
 }
 
 namespace {
@@ -101,25 +94,15 @@ DirectSolve SlabFluid::fourier(const Box& local_box, Correction correction, doub
   };
 }
 
-namespace {
-/// The owned entries of a field of the extended slab: [begin, end).
-std::pair<index_t, index_t> owned_range(const dvec& v, int planes, int ghosts, const char* what) {
-  const index_t all = planes + 2 * ghosts;
-  require(static_cast<index_t>(v.size()) % all == 0, std::string(what) + ": field size", v.size(),
-          "must be whole planes of the extended slab");
-  const index_t ps = static_cast<index_t>(v.size()) / all;
-  return {ghosts * ps, (ghosts + planes) * ps};
-}
-}  // namespace
 
 double SlabFluid::dot(const dvec& a, const dvec& b) const {
-  const auto [lo, hi] = owned_range(a, slabs_.planes(), ghosts_, "SlabFluid::dot");
+  const auto [lo, hi] = halo_->owned(a, "SlabFluid::dot");
   require(a.size() == b.size(), "SlabFluid::dot: field sizes", b.size(), "must be equal");
   return comm_.sum(thrust::inner_product(a.begin() + lo, a.begin() + hi, b.begin() + lo, 0.0));
 }
 
 double SlabFluid::max_abs(const dvec& v) const {
-  const auto [lo, hi] = owned_range(v, slabs_.planes(), ghosts_, "SlabFluid::max_abs");
+  const auto [lo, hi] = halo_->owned(v, "SlabFluid::max_abs");
   const auto begin = v.begin() + lo, end = v.begin() + hi;
   const double m = thrust::transform_reduce(begin, end, [] RBFIB_HD (double a) { return std::abs(a); }, 0.0,
                                             thrust::maximum<double>());

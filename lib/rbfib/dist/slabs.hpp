@@ -10,6 +10,7 @@
 #include "rbfib/dist/comm.hpp"
 #include "rbfib/grid/box.hpp"
 
+#include <utility>
 #include <vector>
 
 namespace rbfib::dist {
@@ -23,6 +24,8 @@ class Slabs {
   const Comm& comm() const { return comm_; }
   int planes(int rank) const { return planes_[static_cast<std::size_t>(rank)]; }
   int first(int rank) const { return first_[static_cast<std::size_t>(rank)]; }
+  /// The rank that owns plane z (0 <= z < n_z): the blocks are ceil(n_z / P) planes.
+  int owner(int z) const { return z / planes_[0]; }
   /// This rank's planes.
   int planes() const { return planes(comm_.rank()); }
   int first() const { return first(comm_.rank()); }
@@ -64,8 +67,15 @@ class Halo {
   /// Each ghost plane added into the plane its neighbour owns; the ghosts are then zero (collective).
   void sum(dvec& extended) const;
 
- private:
+  /// The entries of a plane of an extended field (InputError naming `what` unless whole planes).
   index_t plane_size_of(const dvec& extended, const char* what) const;
+  /// The owned entries of an extended field: [first, last).
+  std::pair<index_t, index_t> owned(const dvec& extended, const char* what) const {
+    const index_t ps = plane_size_of(extended, what);
+    return {index_t(ghosts_) * ps, index_t(ghosts_ + slabs_.planes()) * ps};
+  }
+
+ private:
   void count_exchange(index_t count) const;  // two messages of `count` doubles (Traffic)
   const Slabs& slabs_;
   int ghosts_;
