@@ -27,6 +27,13 @@ using st::row;
 
 namespace {
 
+struct Scale {
+  double h;        // um
+  int data, sample;
+  int steps, repeats;
+};
+
+#if defined(RBFIB_COMMAND) && defined(RBFIB_MPIEXEC)
 // The eight red cells of the whole-blood box: centre (um), rotation axis and angle (deg).
 struct Placed {
   double c[3], axis[3], angle;
@@ -40,12 +47,6 @@ const Placed kBox[8] = {
     {{11.82244446, 5.936727066, 8.018481606}, {0.5056748171, 0.2546382014, -0.8242890062}, 14.05381298},
     {{12.00867413, 6.189066145, 12.0311834}, {0.2582796887, -0.754664576, -0.603135955}, 2.553258844},
     {{12.10142044, 5.87240787, 0.002491379054}, {-0.7179587943, 0.5088304997, 0.4750017812}, 3.122351516},
-};
-
-struct Scale {
-  double h;        // um
-  int data, sample;
-  int steps, repeats;
 };
 
 /// The scene of tx x tz whole-blood boxes.
@@ -137,15 +138,16 @@ Outcome run_command(const std::string& scene, int processes, const std::string& 
   o.share_cells = all > 0 ? cells / all : NAN;
   return o;
 }
+#endif
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  return st::run_main("bench_scale", [&] {
+  return st::run_main("bench_scale", [&]() -> int {
     const st::Options opt = st::parse_command_line(argc, argv, "bench_scale",
                                                    "Several processes: weak scaling, communication, projection");
     const bool full = opt.scale == st::Scale::full;
-    const Scale s = full ? Scale{0.4, 400, 1600, 20, 3} : Scale{0.5, 200, 800, 5, 1};
+    const Scale s = full ? Scale{0.4, 400, 1600, 40, 5} : Scale{0.5, 200, 800, 5, 1};
     st::Json results = st::make_results(opt);
     st::Json& P = results["parameters"];
     P["h_um"] = s.h;
