@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 namespace rbfib::sim {
 namespace {
@@ -37,8 +38,8 @@ ib: {kernel: bspline3}
   return scene::build(sc);
 }
 
-/// Markers on the plane y = y0 every `spacing` in x and z (8 x 8 um).
-HeldWall plane(double y0, double spacing) {
+/// Markers on the plane y = y0 every `spacing` in x and z (8 x 8 um); `dense`: the dense mobility.
+HeldWall plane(double y0, double spacing, bool dense = false) {
   const int m = int(std::lround(8 * um / spacing)), n = m * m;
   host_vector<double> X(static_cast<std::size_t>(3 * n));
   for (int i = 0; i < m; ++i)
@@ -46,7 +47,7 @@ HeldWall plane(double y0, double spacing) {
       const int p = i * m + k;
       X[p] = (i + 0.25) * spacing, X[n + p] = y0, X[2 * n + p] = (k + 0.25) * spacing;
     }
-  return HeldWall{"plane", dvec(X.begin(), X.end())};
+  return HeldWall{"plane", dvec(X.begin(), X.end()), dense};
 }
 
 TEST(HeldWall, MarkersDoNotSlipWhereTheShearWouldMoveThem) {
@@ -59,6 +60,58 @@ TEST(HeldWall, MarkersDoNotSlipWhereTheShearWouldMoveThem) {
     EXPECT_LT(blas::norm_inf(ib.held_wall(0).velocity()), 1e-10 * U_top) << "step " << s;
   }
   EXPECT_EQ(ib.held_wall(0).mobilities(), 1u);  // one dt, one mobility
+  EXPECT_TRUE(ib.held_wall(0).circulant());      // 2h apart on the periodic plane: the lattice is commensurate
+}
+
+TEST(HeldWall, CirculantMobilityHoldsAsTheDenseOneDoes) {
+  // The same wall, its mobility from 3 trial steps and transforms over the lattice, and from 192
+  // trial steps and an LU: the same held flow, and the same wall force but for the uniform normal
+  // force, which moves no fluid between walls (the circulant solve gives it zero; the dense LU,
+  // whose matrix is singular in that direction to rounding, whatever its pivot makes of it).
+  ImmersedBoundary a = channel(0.1), b = channel(0.1);
+  a.add(plane(1.5 * um, 1.0 * um));
+  b.add(plane(1.5 * um, 1.0 * um, true));
+  for (int s = 0; s < 3; ++s) a.step(), b.step();
+  ASSERT_TRUE(a.held_wall(0).circulant());
+  ASSERT_FALSE(b.held_wall(0).circulant());
+  EXPECT_LT(blas::norm_inf(a.held_wall(0).velocity()), 1e-10 * U_top);
+  std::vector<double> Fa(a.held_wall(0).force().begin(), a.held_wall(0).force().end());
+  std::vector<double> Fb(b.held_wall(0).force().begin(), b.held_wall(0).force().end());
+  const std::size_t n = Fa.size() / 3;
+  for (std::vector<double>* F : {&Fa, &Fb}) {  // remove the mean normal (y) force
+    double mean = 0;
+    for (std::size_t k = 0; k < n; ++k) mean += (*F)[n + k] / double(n);
+    for (std::size_t k = 0; k < n; ++k) (*F)[n + k] -= mean;
+  }
+  double diff = 0, size = 0;
+  for (std::size_t k = 0; k < Fa.size(); ++k) diff = std::max(diff, std::abs(Fa[k] - Fb[k])), size = std::max(size, std::abs(Fb[k]));
+  EXPECT_GT(size, 0.0);
+  EXPECT_LT(diff, 1e-12 * size);  // measured 2.1e-15
+  // The flows they leave agree to the same digits.
+  const std::vector<double> ua = velocity_profile(a, {1, 0, 0}), ub = velocity_profile(b, {1, 0, 0});
+  for (std::size_t j = 0; j < ua.size(); ++j) EXPECT_NEAR(ua[j], ub[j], 1e-10 * U_top) << "row " << j;
+}
+
+TEST(HeldWall, OnlyACommensurateLatticeOnAPeriodicPlaneIsCirculant) {
+  const MacGrid grid = make_mac_grid(3, {16, 12, 16}, {8 * um, 6 * um, 8 * um}, {MacBoundary::periodic, MacBoundary::dirichlet, MacBoundary::periodic});
+  const auto host = [](const HeldWall& w) { return std::vector<double>(w.X.begin(), w.X.end()); };
+  const std::optional<MarkerLattice> L = commensurate_lattice(host(plane(1.5 * um, 1.0 * um)), grid);
+  ASSERT_TRUE(L.has_value());
+  EXPECT_EQ(L->normal, 1);
+  EXPECT_EQ(L->n[0], 8);
+  EXPECT_EQ(L->n[1], 8);
+  EXPECT_TRUE(commensurate_lattice(host(plane(1.5 * um, 0.5 * um)), grid).has_value());    // one cell apart
+  EXPECT_FALSE(commensurate_lattice(host(plane(1.5 * um, 8 * um / 6)), grid).has_value());  // 2.67 cells apart
+  std::vector<double> X = host(plane(1.5 * um, 1.0 * um));
+  X[64 + 5] += 0.01 * um;  // one marker off the plane
+  EXPECT_FALSE(commensurate_lattice(X, grid).has_value());
+  X = host(plane(1.5 * um, 1.0 * um));
+  X[128 + 3] = X[128 + 2];  // z: two markers on one lattice point, one lattice point empty
+  EXPECT_FALSE(commensurate_lattice(X, grid).has_value());
+  // A plane normal to x (x periodic, but y is a wall axis): not translation invariant.
+  std::vector<double> Y = host(plane(1.5 * um, 1.0 * um));
+  std::swap_ranges(Y.begin(), Y.begin() + 64, Y.begin() + 64);
+  EXPECT_FALSE(commensurate_lattice(Y, grid).has_value());
 }
 
 TEST(HeldWall, SteadyShearAboveItAndRestBelowIt) {

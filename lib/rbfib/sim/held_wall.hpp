@@ -14,24 +14,31 @@
 //   per dt (one fluid step per column, by differences from the same state: L is fixed, and the
 //   trial forces are scaled so that the differences lose no digits) and kept as LU factors, one
 //   per ladder level.
+// A flat wall whose markers tile a periodic plane on a lattice commensurate with the grid has a
+// block-circulant mobility (sim/circulant_mobility.hpp): built from 3 trial steps instead of 3n and
+// solved by transforms over the lattice; the dense LU serves every other wall (a bumpy one).
 // Markers about 2h apart (Kallemov et al.): closer, M is near singular (its columns overlap);
 // farther, the fluid leaks between them. The held force takes no part in eq. 5.4: it is the
 // solution of a constraint, not an explicit elastic force, and sets no step.
 // Cost per step: a second fluid step, one interpolation and one spreading at the markers, one LU
-// solve of order 3n; per new dt, 3n + 1 fluid steps and one LU factorization (O(n^3)).
+// solve of order 3n (flat lattice: two transforms); per new dt, 3n + 1 fluid steps and one LU
+// factorization (O(n^3)) (flat lattice: 4 fluid steps).
 // Units (CGS): positions cm, forces dyn.
 #include "rbfib/fluid/fluid_step.hpp"
 #include "rbfib/linalg/dense.hpp"
+#include "rbfib/sim/circulant_mobility.hpp"
 #include "rbfib/sim/lagrangian.hpp"
 
 #include <map>
+#include <optional>
 #include <string>
 
 namespace rbfib::sim {
 
 struct HeldWall {
   std::string name;
-  dvec X;  ///< marker positions, 3n, X[d n + k] (cm); they do not move
+  dvec X;             ///< marker positions, 3n, X[d n + k] (cm); they do not move
+  bool dense = false;  ///< the dense mobility even for a commensurate flat lattice (to check the circulant one)
 };
 
 class HeldWallSet final : public LagrangianSet {
@@ -61,16 +68,29 @@ class HeldWallSet final : public LagrangianSet {
   const dvec& force() const { return lambda_; }
   const dvec& velocity() const { return U_; }
   /// The mobilities factored so far (one per dt seen), and the seconds spent building them.
-  std::size_t mobilities() const { return mobility_.size(); }
+  std::size_t mobilities() const { return mobility_.size() + circulant_.size(); }
+  /// Whether the markers tile a periodic plane commensurately (the circulant mobility; known after
+  /// the first hold()).
+  bool circulant() const { return lattice_.has_value(); }
   double seconds_building() const { return seconds_building_; }
 
  private:
   linalg::LuFactors build(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algorithm, const VectorField& shape, VectorField& scratch);
+  CirculantMobility build_circulant(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algorithm, const VectorField& shape,
+                                    VectorField& scratch);
+  /// The velocity at every marker (3n) after one fluid step from the current state with the force
+  /// `trial` on unknown `column` (component c of marker k: c n + k), minus U0 (the step without
+  /// force), divided by `trial`: a column of the mobility.
+  dvec response(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algorithm, index_t column, double trial, const dvec& U0,
+                VectorField& g, VectorField& scratch);
 
   HeldWall wall_;
   ib::SortedPoints at_, spread_;
   dvec U_, lambda_;
   std::map<double, linalg::LuFactors> mobility_;  // by dt
+  std::optional<MarkerLattice> lattice_;
+  bool lattice_known_ = false;
+  std::map<double, CirculantMobility> circulant_;  // by dt, for a commensurate flat lattice
   double seconds_building_ = 0;
 };
 
