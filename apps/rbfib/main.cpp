@@ -11,8 +11,9 @@
 //   mpirun -n N rbfib run|restart ...       the same on N processes (built with RBFIB_MPI): the
 //                                           fluid in slabs along z (x and z periodic: the Fourier
 //                                           solvers), each process the cells whose centroid lies in
-//                                           its planes; the checkpoint is the one a single process
-//                                           writes, so a run continues on any number of processes
+//                                           its planes; the checkpoint and the snapshots are the
+//                                           ones a single process writes, so a run continues on
+//                                           any number of processes
 //
 // Exit status: 0 done, 2 bad input (one line naming the field and the value), 3 a numerical
 // failure (the run stops, the message names the step, time and cause; what was written stays).
@@ -62,8 +63,6 @@ struct Processes {
   std::shared_ptr<const FluidDecomposition> split(const scene::Scene& s) const {
     if (size == 1) return nullptr;
 #ifdef RBFIB_WITH_MPI
-    require(s.snapshot_every == 0, "snapshot_every", s.snapshot_every,
-            "snapshots are written by one process only: set it to 0 on several processes (the checkpoints serve any number)");
     // Halo: a cell reaches beyond its owner's planes by its size (1.5 x its reference radius, for
     // the stretch of a sheared cell) plus the kernel's support.
     double beyond = 0;
@@ -107,6 +106,52 @@ struct Processes {
     if (parts) parts->agree(error);
     else if (error) std::rethrow_exception(error);
   }
+};
+
+/// The run's snapshots (io/snapshot.hpp), one series whatever the number of processes: process 0
+/// writes them. On several processes each snapshot gathers the whole run's state
+/// (ImmersedBoundary::carried(), collective) into a one-process copy of the run that process 0
+/// builds at the first snapshot; the writer reads that copy as it reads a one-process run. The
+/// copy holds the whole run, as the checkpoint's gather does: process 0's memory bounds the run.
+class Snapshots {
+ public:
+  Snapshots(const scene::Scene& s, std::string out, const Processes& procs, std::shared_ptr<const FluidDecomposition> parts)
+      : scene_(s), out_(std::move(out)), procs_(procs), parts_(std::move(parts)) {}
+
+  /// Writes ib's state as the next snapshot (collective on several processes).
+  void write(const sim::ImmersedBoundary& ib) {
+    std::optional<sim::ImmersedBoundary::Carried> state;
+    if (parts_) state = ib.carried();
+    procs_.on_writer(parts_, [&] {
+      const sim::ImmersedBoundary& whole = state ? restored(*state) : ib;
+      if (!writer_) writer_ = std::make_unique<io::SnapshotWriter>(out_, whole);
+      writer_->write(whole);
+    });
+  }
+  /// A continued run: the series goes on from the snapshots already written up to ib's time
+  /// (collective on several processes).
+  void resume(const sim::ImmersedBoundary& ib) {
+    std::optional<sim::ImmersedBoundary::Carried> state;
+    if (parts_) state = ib.carried();
+    procs_.on_writer(parts_, [&] {
+      const sim::ImmersedBoundary& whole = state ? restored(*state) : ib;
+      writer_ = std::make_unique<io::SnapshotWriter>(out_, whole);
+      writer_->resume(whole.time());
+    });
+  }
+
+ private:
+  const sim::ImmersedBoundary& restored(const sim::ImmersedBoundary::Carried& state) {
+    if (!copy_) copy_ = std::make_unique<sim::ImmersedBoundary>(io::build_scene(scene_));
+    copy_->restore(state);
+    return *copy_;
+  }
+  const scene::Scene& scene_;
+  std::string out_;
+  const Processes& procs_;
+  std::shared_ptr<const FluidDecomposition> parts_;
+  std::unique_ptr<sim::ImmersedBoundary> copy_;  // process 0, several processes: the whole run
+  std::unique_ptr<io::SnapshotWriter> writer_;
 };
 
 /// A rough estimate of what a scene needs (bytes): about 40 grid vectors for the fluid, the
@@ -246,7 +291,7 @@ int advance(const scene::Scene& s, const std::string& out, double until, const P
   o.progress_every = {0, 0, terminal ? 0.5 : 5.0};
   o.parts = parts;
   std::ofstream csv;
-  std::unique_ptr<io::SnapshotWriter> snapshots;
+  Snapshots snapshots(s, out, procs, parts);
   run::Hooks h;
   h.sample = [&](const sim::ImmersedBoundary& ib, const sim::IbStepReport* r, run::SeriesSet& series) {
     if (!r) return;  // the table starts after the first step
@@ -261,11 +306,7 @@ int advance(const scene::Scene& s, const std::string& out, double until, const P
     d.rows.push_back(std::move(row));
   };
   h.checkpointed = [&](const run::SeriesSet&) { csv.flush(); };
-  if (s.snapshot_every > 0)
-    h.snapshot = [&](const sim::ImmersedBoundary& ib) {
-      if (!snapshots) snapshots = std::make_unique<io::SnapshotWriter>(out, ib);
-      snapshots->write(ib);
-    };
+  if (s.snapshot_every > 0) h.snapshot = [&](const sim::ImmersedBoundary& ib) { snapshots.write(ib); };
   h.progress = [&](const run::Progress& p) {
     if (writer) std::cout << (terminal ? "\r" : "") << p.describe() << (terminal ? "" : "\n") << std::flush;
   };
@@ -275,6 +316,7 @@ int advance(const scene::Scene& s, const std::string& out, double until, const P
     std::cout << "building the cell types and the solver ..." << std::endl;
   }
   run::Run run(s, o, h);
+  if (run.continued() && s.snapshot_every > 0) snapshots.resume(run.ib());
   if (!writer) {
     const run::Progress p = run.evolve();
     procs.traffic(parts, p.sitting_steps);
@@ -287,13 +329,8 @@ int advance(const scene::Scene& s, const std::string& out, double until, const P
   csv << "\n";
   if (const auto it = run.series().find("diagnostics"); it != run.series().end())
     for (const std::vector<double>& row : it->second.rows) csv << csv_line(row);
-  if (run.continued()) {
+  if (run.continued())
     std::cout << "restarting at step " << run.ib().step_count() << ", t = " << run.ib().time() / units::us << " us" << std::endl;
-    if (s.snapshot_every > 0) {
-      snapshots = std::make_unique<io::SnapshotWriter>(out, run.ib());
-      snapshots->resume(run.ib().time());
-    }
-  }
   const run::Progress p = run.evolve();
   csv.flush();
   if (terminal) std::cout << "\n";
