@@ -24,6 +24,31 @@ double seconds_since(clock_type::time_point& t0) {
   t0 = t1;
   return s;
 }
+/// The entries of a point set's positions X (3n, X[d n + k]) at the points `ids`, in their order.
+dvec points_at(const dvec& X, const std::vector<index_t>& ids) {
+  const std::vector<double> x(X.begin(), X.end());
+  const std::size_t n = x.size() / 3, m = ids.size();
+  std::vector<double> out(3 * m);
+  for (std::size_t d = 0; d < 3; ++d)
+    for (std::size_t q = 0; q < m; ++q) out[d * m + q] = x[d * n + std::size_t(ids[q])];
+  return dvec(out.begin(), out.end());
+}
+/// The whole set's positions (3n) from each process's points X at `ids` (collective).
+dvec whole_points(const FluidDecomposition& parts, const dvec& X, const std::vector<index_t>& ids, index_t n) {
+  const std::vector<double> x(X.begin(), X.end());
+  const std::size_t m = ids.size();
+  std::vector<double> mine;  // per point: its index, then x, y, z
+  mine.reserve(4 * m);
+  for (std::size_t q = 0; q < m; ++q) {
+    mine.push_back(double(ids[q]));
+    for (std::size_t d = 0; d < 3; ++d) mine.push_back(x[d * m + q]);
+  }
+  std::vector<double> whole(static_cast<std::size_t>(3 * n), NAN);
+  for (const std::vector<double>& from : parts.exchange(std::vector<std::vector<double>>(std::size_t(parts.processes()), mine)))
+    for (std::size_t i = 0; i + 3 < from.size(); i += 4)
+      for (std::size_t d = 0; d < 3; ++d) whole[d * std::size_t(n) + std::size_t(from[i])] = from[i + 1 + d];
+  return dvec(whole.begin(), whole.end());
+}
 /// The boxes the Lagrangian sets interpolate from and spread into: the fluid's, or on a split fluid
 /// those of the wider grid its cells reach (FluidDecomposition::lagrangian_grid).
 std::array<Box, 3> lagrangian_boxes(const FluidStep& fluid) {
@@ -111,7 +136,8 @@ ImmersedBoundary::Carried ImmersedBoundary::carried() const {
   } else {
     for (const auto* b : batches_) c.batches.push_back(b->batch().state().storage());
   }
-  for (const auto* q : points_) c.points.push_back(q->points().X);
+  for (std::size_t p = 0; p < points_.size(); ++p)
+    c.points.push_back(parts ? whole_points(*parts, points_[p]->points().X, point_ids_[p], point_counts_[p]) : points_[p]->points().X);
   for (const auto* q : shells_) c.shells.push_back(q->shell().X);
   for (const auto* q : cortices_) c.cortices.push_back(q->cortex().X);
   c.clock = clock();
@@ -133,7 +159,13 @@ void ImmersedBoundary::restore(const Carried& whole) {
     for (int k = 0; k < 2; ++k)
       if (!whole.fluid.phi[k].empty()) part.fluid.phi[k] = parts->extend(ops.scalar_box(), whole.fluid.phi[k]);
     part.fluid.t = whole.fluid.t;
-    part.points = whole.points;
+    require(whole.points.size() == points_.size(), "checkpoint: point sets", whole.points.size(),
+            "must equal this setup's " + to_text(points_.size()));
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      require(index_t(whole.points[p].size()) == 3 * point_counts_[p], "checkpoint: point set " + to_text(p) + " size",
+              whole.points[p].size(), "must equal this setup's " + to_text(3 * point_counts_[p]));
+      part.points.push_back(points_at(whole.points[p], point_ids_[p]));
+    }
     part.shells = whole.shells;
     part.cortices = whole.cortices;
     part.clock = whole.clock;
@@ -307,16 +339,28 @@ index_t ImmersedBoundary::add(cells::Batch batch) {
 }
 
 index_t ImmersedBoundary::add(TetheredPoints p) {
-  require(!fluid_->parts() || fluid_->parts()->processes() == 1, "tethered points '" + p.name + "': processes",
-          fluid_->parts() ? fluid_->parts()->processes() : 1, "tethered point sets run on one process only");
-  require(!p.frame || !fluid_->parts(), "tethered points '" + p.name + "': frame", "true",
-          "a frame (Chapter 3's capillary) runs on one process only");
+  const FluidDecomposition* parts = fluid_->parts();
+  require(!p.frame || !parts, "tethered points '" + p.name + "': frame", "true", "a frame (Chapter 3's capillary) runs on one process only");
   if (p.frame)
     for (const TetheredPointSet* q : points_)
       require(!q->points().frame, "tethered points '" + p.name + "': frame", "true",
               "only one point set may hold the frame ('" + q->points().name + "' does)");
+  const bool midpoint = options_.coupling == Coupling::midpoint;
+  const index_t n = index_t(p.X.size()) / 3;
+  std::vector<index_t> ids;
+  if (parts) {  // the whole set checked as one process would, then this process's points by anchor
+    TetheredPointSet whole(p, midpoint);
+    const std::vector<double> anchors(p.anchors.begin(), p.anchors.end());
+    const int axis = parts->split_axis();
+    for (index_t k = 0; k < n; ++k)
+      if (parts->owner(anchors[std::size_t(axis * n + k)]) == parts->process()) ids.push_back(k);
+    p.X = points_at(p.X, ids);
+    p.anchors = points_at(p.anchors, ids);
+  }
+  point_ids_.push_back(std::move(ids));
+  point_counts_.push_back(n);
   // The seed's coupling holds the springs at X^n; the midpoint coupling at X^{n+1/2}.
-  return keep(std::make_unique<TetheredPointSet>(std::move(p), options_.coupling == Coupling::midpoint), points_);
+  return keep(std::make_unique<TetheredPointSet>(std::move(p), midpoint, parts != nullptr), points_);
 }
 
 index_t ImmersedBoundary::add(LdsmShell shell) {

@@ -140,8 +140,12 @@ class ImmersedBoundary {
   /// diagnostics that read the same whatever the number of processes.
   std::vector<double> run_cell_values(index_t b, const std::vector<double>& mine) const;
   /// Adds a set of tethered points; returns its index. Throws InputError naming the field for
-  /// mismatched sizes, non-finite values or negative constants.
+  /// mismatched sizes, non-finite values or negative constants. On a split fluid every process adds
+  /// the whole set and keeps the points whose anchor lies in its planes (by position: a point stays
+  /// within its spring's stretch of its anchor, far inside the Lagrangian halo, so it keeps its
+  /// owner; one beyond the halo stops the step, named); a frame runs on one process only.
   index_t add(TetheredPoints points);
+  /// This process's points of set p (on one process, the whole set).
   const TetheredPoints& points(index_t p) const { return points_.at(p)->points(); }
   const IbOptions& options() const { return options_; }
   index_t point_sets() const { return index_t(points_.size()); }
@@ -244,6 +248,8 @@ class ImmersedBoundary {
   std::vector<std::vector<index_t>> ids_;            // per batch: each cell's index in the whole batch
   std::vector<std::vector<double>> whole_body_;      // per batch, split fluid: every cell's body force (3N)
   std::vector<TetheredPointSet*> points_;
+  std::vector<std::vector<index_t>> point_ids_;      // per point set, split fluid: each point's index in the whole set
+  std::vector<index_t> point_counts_;                // per point set: the whole set's points
   std::vector<LdsmShellSet*> shells_;
   std::vector<CortexSet*> cortices_;
   std::vector<HeldWallSet*> held_;

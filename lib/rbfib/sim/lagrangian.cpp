@@ -139,9 +139,10 @@ void CellBatchSet::update(double dt, const std::array<double, 3>& u_frame) {
 
 // ---- tethered points ------------------------------------------------------------------------
 
-TetheredPointSet::TetheredPointSet(TetheredPoints p, bool predicted) : points_(std::move(p)), predicted_(predicted) {
+TetheredPointSet::TetheredPointSet(TetheredPoints p, bool predicted, bool part) : points_(std::move(p)), predicted_(predicted) {
   const std::string field = name();
-  require(points_.X.size() % 3 == 0 && !points_.X.empty(), field + ": positions size", points_.X.size(), "must be a positive multiple of 3");
+  require(points_.X.size() % 3 == 0 && (part || !points_.X.empty()), field + ": positions size", points_.X.size(),
+          "must be a positive multiple of 3");
   require(points_.anchors.size() == points_.X.size(), field + ": anchors size", points_.anchors.size(), "must equal the positions' size");
   require(std::isfinite(points_.k) && points_.k >= 0, field + ": spring constant k (dyn/cm)", points_.k, "must be finite and >= 0");
   require(std::isfinite(points_.eta) && points_.eta >= 0, field + ": damping eta (dyn s/cm)", points_.eta, "must be finite and >= 0");

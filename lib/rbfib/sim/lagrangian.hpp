@@ -133,8 +133,9 @@ struct TetheredPoints {
 /// force is spread from X^n, sorted once for (a), (d) and (f); see ib_step.hpp for why).
 class TetheredPointSet final : public LagrangianSet {
  public:
-  /// Throws InputError naming the field for mismatched sizes, non-finite values or negative constants.
-  TetheredPointSet(TetheredPoints points, bool predicted);
+  /// Throws InputError naming the field for mismatched sizes, non-finite values or negative
+  /// constants, or no points (`part`: a process's part of a split set, which may have none).
+  TetheredPointSet(TetheredPoints points, bool predicted, bool part = false);
   std::string name() const override { return "tethered points '" + points_.name + "'"; }
   void save() override { X0_ = points_.X; }
   void restore() override { points_.X = X0_; }

@@ -8,9 +8,11 @@
 # across a restart on 2, are the series one process writes: the same run.xmf, the same files, every
 # dataset within 1e-10 of its largest value and the same t and step (measured: positions 3e-16,
 # fluid 1e-12, the force density 2.2e-11, a small difference of large terms near the rest shape). A scene with walls across z
-# is refused on 2 processes with exit status 2 and one line naming the field.
+# is refused on 2 processes with exit status 2 and one line naming the field. The shortened
+# scenes/platelets_near_wall.yaml (an endothelium of tethered points) gives the same table on 1 and
+# 2 processes.
 #
-# usage: on_ranks.sh RBFIB MPIEXEC SCENE WORKDIR
+# usage: on_ranks.sh RBFIB MPIEXEC SCENE WORKDIR (SCENE: scenes/two_red_cells.yaml, beside the others)
 set -eu
 rbfib=$1 mpiexec=$2 scene=$3 work=$4
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
@@ -60,10 +62,17 @@ for f in files:
 print(f"snapshots: largest difference {worst:.2e} of a dataset's largest value")
 sys.exit(0 if worst <= 1e-10 else 1)
 PY
+# Tethered points (an endothelium of 16,000 points, split by anchor) with two platelets.
+sed '/snapshot_every/d; s/diagnostics_every: 20/diagnostics_every: 2/' "$(dirname "$scene")/platelets_near_wall.yaml" > tethers.yaml
+"$rbfib" run tethers.yaml --out tethers_one --until '0.25 us' > tethers_one.log
+"$mpiexec" -n 2 "$rbfib" run tethers.yaml --out tethers_two --until '0.25 us' > tethers_two.log
+columns tethers_one > t1.csv; columns tethers_two > t2.csv
+[ "$(wc -l < t1.csv)" -eq 6 ] || { echo "FAIL: expected 5 rows of diagnostics with tethered points"; cat t1.csv; exit 1; }
+same t1.csv t2.csv "tethered points on 2 processes differ from one"
 # Walls across z: the multigrid path, one process only.
 sed 's/periodic: \[x, z\]/periodic: [x, y]/; s/^    y: {lower/    z: {lower/' s.yaml > walls_z.yaml
 status=0
 "$mpiexec" -n 2 "$rbfib" run walls_z.yaml --out walls_z > walls_z.out 2> walls_z.err || status=$?
 [ "$status" -eq 2 ] || { echo "FAIL: walls across z on 2 processes: exit status $status, expected 2"; exit 1; }
 [ "$(grep -c '^rbfib: grid.boundary' walls_z.err)" -eq 1 ] || { echo "FAIL: expected one line naming grid.boundary"; cat walls_z.err; exit 1; }
-echo "PASS: 1 and 2 processes agree; restarts 2 -> 1 and 1 -> 2 agree; snapshots one series; walls across z refused"
+echo "PASS: 1 and 2 processes agree; restarts 2 -> 1 and 1 -> 2 agree; snapshots one series; tethered points split; walls across z refused"
