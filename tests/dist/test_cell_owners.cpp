@@ -15,6 +15,7 @@
 // stepped on a stale ghost plane, a force lost at a seam or a cell lost in transit exceeds by
 // orders (a lost or duplicated cell changes the whole state's size).
 #include "../common/small_cells.hpp"
+#include "channel.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/dist/slab_fluid.hpp"
 #include "rbfib/dist/slab_interaction.hpp"
@@ -28,37 +29,18 @@
 namespace rbfib::dist {
 namespace {
 
-using MB = MacBoundary;
 using rbfib::testing::small_sphere;
 const double um = units::um;
 
-struct Channel {
-  MacGrid grid = make_mac_grid(3, {16, 16, 28}, {16 * um, 16 * um, 28 * um}, {MB::periodic, MB::dirichlet, MB::periodic});
-  FluidParameters fluid{1.0, units::cP};
-  NavierStokesOptions options;
-  sim::IbOptions ib;
-  Channel() {
-    options.dt = 0.2 * units::us;
-    ib.kernel = ib::Kernel::bspline3;
-  }
-  /// The step on one process (parts null) or on this rank's slab; every rank adds all four cells.
-  sim::ImmersedBoundary make(std::shared_ptr<const FluidDecomposition> parts) const {
-    sim::ImmersedBoundary s(std::make_unique<NavierStokesStep>(grid, fluid, options, BoundaryVelocity{}, parts), ib);
-    std::vector<cells::Placement> p(4);
-    const double z[4] = {6, 13, 19, 26};
-    for (int k = 0; k < 4; ++k) p[k].center = {8 * um, 8 * um, z[k] * um};
-    p[1].stretch = {1.1, 0.95, 1.0};  // a stretched cell: forces from the first step
-    s.add(cells::Batch(small_sphere(), p));
-    return s;
-  }
-};
-
-/// The starting flow, whole or on this rank's slab.
-void start_flow(sim::ImmersedBoundary& s, const FluidDecomposition* parts, const MacGrid& grid) {
-  const double W = 20.0, Ly = grid.length[1];  // cm/s
-  MacOperators whole(grid);
-  dvec w = sample(whole.component_box(2), [=](double, double y, double) { return W * std::sin(M_PI * y / Ly); });
-  s.fluid_state().u[2] = parts ? parts->extend(s.fluid().operators().component_box(2), w) : w;
+/// The step on one process (parts null) or on this rank's slab; every rank adds all four cells.
+sim::ImmersedBoundary four_cells(const Channel& setup, std::shared_ptr<const FluidDecomposition> parts) {
+  sim::ImmersedBoundary s = setup.empty(parts);
+  std::vector<cells::Placement> p(4);
+  const double z[4] = {6, 13, 19, 26};
+  for (int k = 0; k < 4; ++k) p[k].center = {8 * um, 8 * um, z[k] * um};
+  p[1].stretch = {1.1, 0.95, 1.0};  // a stretched cell: forces from the first step
+  s.add(cells::Batch(small_sphere(), p));
+  return s;
 }
 
 /// The largest difference of two whole states' cell positions (z compared modulo the period).
@@ -83,14 +65,14 @@ TEST(CellOwners, CellsCrossingRanksMoveAsOnOneProcessAndCheckpointsRestartOnAnyN
   const index_t nd = small_sphere()->n_data();
   const double Lz = setup.grid.length[2];
 
-  sim::ImmersedBoundary many = setup.make(parts);
+  sim::ImmersedBoundary many = four_cells(setup, parts);
   start_flow(many, parts.get(), setup.grid);
   EXPECT_EQ(world.sum(index_t(many.batch(0).size())), 4);
   std::vector<index_t> first_owned = many.cell_ids(0);
 
   std::unique_ptr<sim::ImmersedBoundary> one;  // rank 0: the same cells on one process
   if (world.rank() == 0) {
-    one = std::make_unique<sim::ImmersedBoundary>(setup.make(nullptr));
+    one = std::make_unique<sim::ImmersedBoundary>(four_cells(setup, nullptr));
     start_flow(*one, nullptr, setup.grid);
   }
   const sim::ImmersedBoundary::Carried start = many.carried();
@@ -119,7 +101,7 @@ TEST(CellOwners, CellsCrossingRanksMoveAsOnOneProcessAndCheckpointsRestartOnAnyN
   }
 
   // Restarts from the ranks' step-50 state: on as many ranks, and (rank 0) on one process.
-  sim::ImmersedBoundary again = setup.make(parts);
+  sim::ImmersedBoundary again = four_cells(setup, parts);
   again.restore(at50);
   for (int n = 0; n < 50; ++n) again.step();
   const sim::ImmersedBoundary::Carried again100 = again.carried();
@@ -131,7 +113,7 @@ TEST(CellOwners, CellsCrossingRanksMoveAsOnOneProcessAndCheckpointsRestartOnAnyN
     EXPECT_LE(worst50, 1e-10 * moved100) << world.size() << " ranks, step 50";
     EXPECT_LE(position_difference(at100, one100, nd, Lz), 1e-10 * moved100) << world.size() << " ranks, step 100";
     EXPECT_LE(position_difference(again100, one100, nd, Lz), 1e-10 * moved100) << "restarted on " << world.size() << " ranks";
-    sim::ImmersedBoundary single = setup.make(nullptr);
+    sim::ImmersedBoundary single = four_cells(setup, nullptr);
     single.restore(at50);
     for (int n = 0; n < 50; ++n) single.step();
     EXPECT_LE(position_difference(single.carried(), one100, nd, Lz), 1e-10 * moved100) << "restarted on one process";

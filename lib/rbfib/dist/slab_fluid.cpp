@@ -95,17 +95,23 @@ DirectSolve SlabFluid::fourier(const Box& local_box, Correction correction, doub
 }
 
 
-double SlabFluid::dot(const dvec& a, const dvec& b) const {
-  const auto [lo, hi] = halo_->owned(a, "SlabFluid::dot");
-  require(a.size() == b.size(), "SlabFluid::dot: field sizes", b.size(), "must be equal");
-  return comm_.sum(thrust::inner_product(a.begin() + lo, a.begin() + hi, b.begin() + lo, 0.0));
+double SlabFluid::dot(const std::vector<std::pair<const dvec*, const dvec*>>& pairs) const {
+  double sum = 0;
+  for (const auto& [a, b] : pairs) {
+    const auto [lo, hi] = halo_->owned(*a, "SlabFluid::dot");
+    require(a->size() == b->size(), "SlabFluid::dot: field sizes", b->size(), "must be equal");
+    sum += thrust::inner_product(a->begin() + lo, a->begin() + hi, b->begin() + lo, 0.0);
+  }
+  return comm_.sum(sum);
 }
 
-double SlabFluid::max_abs(const dvec& v) const {
-  const auto [lo, hi] = halo_->owned(v, "SlabFluid::max_abs");
-  const auto begin = v.begin() + lo, end = v.begin() + hi;
-  const double m = thrust::transform_reduce(begin, end, [] RBFIB_HD (double a) { return std::abs(a); }, 0.0,
-                                            thrust::maximum<double>());
+double SlabFluid::max_abs(const std::vector<const dvec*>& v) const {
+  double m = 0;
+  for (const dvec* f : v) {
+    const auto [lo, hi] = halo_->owned(*f, "SlabFluid::max_abs");
+    m = std::max(m, thrust::transform_reduce(f->begin() + lo, f->begin() + hi, [] RBFIB_HD (double a) { return std::abs(a); }, 0.0,
+                                             thrust::maximum<double>()));
+  }
   return comm_.max(m);
 }
 

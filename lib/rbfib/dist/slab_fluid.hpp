@@ -36,8 +36,9 @@ class SlabFluid : public FluidDecomposition {
   int split_cells() const override { return grid_.cells[2]; }
   DirectSolve fourier(const Box& local_box, Correction correction, double alpha, double beta,
                       const std::string& name) const override;
-  double max_abs(const dvec& v) const override;
-  double dot(const dvec& a, const dvec& b) const override;
+  using FluidDecomposition::max_abs;
+  double max_abs(const std::vector<const dvec*>& v) const override;
+  double dot(const std::vector<std::pair<const dvec*, const dvec*>>& pairs) const override;
   double sum(double v) const override { return comm_.sum(v); }
   bool all(bool ok) const override { return comm_.all(ok); }
   void agree(std::exception_ptr error) const override { comm_.agree(error); }

@@ -9,10 +9,13 @@
 // right-hand side and return a filled solution.
 #include "rbfib/fluid/laplacian.hpp"
 #include "rbfib/grid/mac.hpp"
+#include "rbfib/linalg/blas.hpp"
 
+#include <algorithm>
 #include <exception>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rbfib {
@@ -49,10 +52,13 @@ class FluidDecomposition {
   /// process's part; its solution comes back filled.
   virtual DirectSolve fourier(const Box& local_box, Correction correction, double alpha, double beta,
                               const std::string& name) const = 0;
-  /// max |v| over the owned entries of every process (v a field of the local grid).
-  virtual double max_abs(const dvec& v) const = 0;
-  /// sum of a_i b_i over the owned entries of every process.
-  virtual double dot(const dvec& a, const dvec& b) const = 0;
+  /// max |v| over the owned entries of every process, of every field in `v` (fields of the local
+  /// grid): one reduction for all of them.
+  virtual double max_abs(const std::vector<const dvec*>& v) const = 0;
+  double max_abs(const dvec& v) const { return max_abs(std::vector<const dvec*>{&v}); }
+  /// The sum over the pairs (a, b) of sum_i a_i b_i over the owned entries of every process: one
+  /// reduction for all of them.
+  virtual double dot(const std::vector<std::pair<const dvec*, const dvec*>>& pairs) const = 0;
   /// v summed over the processes.
   virtual double sum(double v) const = 0;
   /// true on every process when ok is true on every process.
@@ -75,5 +81,32 @@ class FluidDecomposition {
   /// lowest that failed (call it before the next collective step, so that none is left waiting).
   virtual void agree(std::exception_ptr error) const = 0;
 };
+
+/// max |v| over the three components of a field: on one process (parts null), or over every
+/// process's owned entries in one reduction.
+inline double max_abs(const FluidDecomposition* parts, const VectorField& v) {
+  if (parts) return parts->max_abs({&v[0], &v[1], &v[2]});
+  return std::max({blas::norm_inf(v[0]), blas::norm_inf(v[1]), blas::norm_inf(v[2])});
+}
+
+/// The sum over the three components of a . b, likewise.
+inline double dot(const FluidDecomposition* parts, const VectorField& a, const VectorField& b) {
+  if (parts) return parts->dot({{&a[0], &b[0]}, {&a[1], &b[1]}, {&a[2], &b[2]}});
+  return blas::dot(a[0], b[0]) + blas::dot(a[1], b[1]) + blas::dot(a[2], b[2]);
+}
+
+/// Runs `phase`; on a split fluid a failure on one process becomes every process's (agree) before
+/// the next collective step, so that none is left waiting.
+template <class Phase>
+void agreed(const FluidDecomposition* parts, Phase&& phase) {
+  if (!parts) return phase();
+  std::exception_ptr error;
+  try {
+    phase();
+  } catch (...) {
+    error = std::current_exception();
+  }
+  parts->agree(error);
+}
 
 }  // namespace rbfib

@@ -28,6 +28,21 @@ double trial_force(const FluidStep& fluid) {
   return fluid.viscosity() * std::min({grid.h(0), grid.h(1), grid.h(2)}) * 1e3;
 }
 
+/// The base of the mobility's columns: the velocity at the markers after the step without force,
+/// from the current state (the fluid step is affine in its force).
+dvec base_velocity(ib::Interaction& ib, FluidStep& fluid, const ib::SortedPoints& at, const std::string& name) {
+  fluid.step(nullptr);
+  dvec U0;
+  interpolate_at(ib, at, fluid.next().u, U0, name);
+  return U0;
+}
+
+VectorField zeros_like(const VectorField& shape) {
+  VectorField g;
+  for (int a = 0; a < 3; ++a) g[a].assign(shape[a].size(), 0.0);
+  return g;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -51,12 +66,8 @@ linalg::LuFactors HeldWallSet::build(ib::Interaction& ib, FluidStep& fluid, ib::
                                      VectorField& scratch) {
   const auto t0 = std::chrono::steady_clock::now();
   const index_t m = index_t(wall_.X.size());  // 3n unknowns
-  VectorField g;
-  for (int a = 0; a < 3; ++a) g[a].assign(shape[a].size(), 0.0);
-  // The base: the step without force, from the same state (the fluid step is affine in its force).
-  fluid.step(nullptr);
-  dvec U0;
-  interpolate_at(ib, at_, fluid.next().u, U0, name());
+  VectorField g = zeros_like(shape);
+  const dvec U0 = base_velocity(ib, fluid, at_, name());
   const double trial = trial_force(fluid);
   std::vector<double> M(static_cast<std::size_t>(m * m));
   for (index_t j = 0; j < m; ++j) {
@@ -72,11 +83,8 @@ CirculantMobility HeldWallSet::build_circulant(ib::Interaction& ib, FluidStep& f
                                                VectorField& scratch) {
   const auto t0 = std::chrono::steady_clock::now();
   const index_t n = index_t(wall_.X.size()) / 3;
-  VectorField g;
-  for (int a = 0; a < 3; ++a) g[a].assign(shape[a].size(), 0.0);
-  fluid.step(nullptr);
-  dvec U0;
-  interpolate_at(ib, at_, fluid.next().u, U0, name());
+  VectorField g = zeros_like(shape);
+  const dvec U0 = base_velocity(ib, fluid, at_, name());
   const double trial = trial_force(fluid);
   std::array<std::vector<double>, 3> columns;
   const index_t origin = lattice_->marker[0];  // the lattice point (0, 0)

@@ -408,17 +408,7 @@ IbStepReport ImmersedBoundary::attempt() {
   for_each_set([](LagrangianSet& s) { s.save(); });
   const FluidDecomposition* parts = fluid_->parts();
   // On a split fluid, a failure of this process's sets becomes every process's failure before the
-  // next exchange (every process then restores and reports the same error).
-  auto agreed = [parts](auto&& phase) {
-    if (!parts) return phase();
-    std::exception_ptr error;
-    try {
-      phase();
-    } catch (...) {
-      error = std::current_exception();
-    }
-    parts->agree(error);
-  };
+  // next exchange (agreed(): every process then restores and reports the same error).
   // The velocity the Lagrangian sets interpolate: the fluid's, or on a split fluid the fluid's
   // widened to the Lagrangian grid (collective: before the phase that may fail on one process).
   auto lagrangian = [&](const VectorField& u) -> const VectorField& {
@@ -431,7 +421,7 @@ IbStepReport ImmersedBoundary::attempt() {
     // (a) U^n = I u^n at X^n; (b) X* = X^n + dt U^n (midpoint: X^{n+1/2} = X^n + dt/2 U^n;
     // forward Euler: neither, the forces act at X^n).
     const VectorField& u_start = coupling == Coupling::forward_euler ? fluid_->state().u : lagrangian(fluid_->state().u);
-    agreed([&] {
+    agreed(parts, [&] {
       for_each_set([&](LagrangianSet& s) {
         s.locate(ib_);
         if (coupling == Coupling::forward_euler) return;
@@ -454,7 +444,7 @@ IbStepReport ImmersedBoundary::attempt() {
     VectorField& spread_to = parts ? f_wide_ : f_;
     for (int a = 0; a < 3; ++a)
       spread_to[a].assign(static_cast<std::size_t>(boxes[a].size()), parts ? 0.0 : options_.body_force[a]);
-    agreed([&] { for_each_set([&](LagrangianSet& s) { s.spread(ib_, options_.spreading, spread_to, scratch_); }); });
+    agreed(parts, [&] { for_each_set([&](LagrangianSet& s) { s.spread(ib_, options_.spreading, spread_to, scratch_); }); });
     if (parts)
       for (int a = 0; a < 3; ++a) {
         parts->narrow_sum(f_wide_[a], f_[a]);
@@ -464,8 +454,7 @@ IbStepReport ImmersedBoundary::attempt() {
       if (!options_.body_force_density[a].empty()) blas::axpy(1.0, options_.body_force_density[a], f_[a]);
     r.seconds_spreading = seconds_since(t0);
     // Eq. 5.4: dt <= (1/4) sqrt(h rho / ||f||_inf).
-    for (int a = 0; a < 3; ++a)
-      r.max_force_density = std::max(r.max_force_density, parts ? parts->max_abs(f_[a]) : blas::norm_inf(f_[a]));
+    r.max_force_density = max_abs(parts, f_);
     const MacGrid& g = fluid_->grid();
     const double h = std::min({g.h(0), g.h(1), g.h(2)});
     r.dt_bound = r.max_force_density > 0 ? 0.25 * std::sqrt(h * fluid_->density() / r.max_force_density)
@@ -490,16 +479,13 @@ IbStepReport ImmersedBoundary::attempt() {
       if (!blas::all_finite(next.u[a]))
         throw NumericalError(Cause::non_finite, "non-finite fluid velocity (component " + to_text(a) + ")");
     const double cell_volume = g.h(0) * g.h(1) * g.h(2);
-    for (int a = 0; a < 3; ++a) {
-      r.max_velocity = std::max(r.max_velocity, parts ? parts->max_abs(next.u[a]) : blas::norm_inf(next.u[a]));
-      r.kinetic_energy += 0.5 * fluid_->density() * (parts ? parts->dot(next.u[a], next.u[a]) : blas::dot(next.u[a], next.u[a])) *
-                          cell_volume;
-    }
+    r.max_velocity = max_abs(parts, next.u);
+    r.kinetic_energy = 0.5 * fluid_->density() * dot(parts, next.u, next.u) * cell_volume;
     r.seconds_fluid = seconds_since(t0);  // with its checks and diagnostics
     // (f) U^{n+1} = I u^{n+1} at X^n (midpoint: U^{n+1/2} = I u^{n+1/2} at X^{n+1/2}, sorted once more);
     const bool midpoint = coupling == Coupling::midpoint;
     const VectorField& u_final = lagrangian(midpoint ? fluid_->midpoint_velocity() : next.u);
-    agreed([&] {
+    agreed(parts, [&] {
       for_each_set([&](LagrangianSet& s) { s.interpolate_end(ib_, u_final, midpoint); });
       r.seconds_interpolation += seconds_since(t0);
       // (g) X^{n+1} = X^n + dt (U + u_c), u_c the frame's velocity (eq. 95) or zero.
