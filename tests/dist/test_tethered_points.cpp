@@ -11,8 +11,9 @@
 //
 // Tolerance: the runs differ in the order of sums only (as test_cell_owners.cpp): measured 5.0e-15
 // of the largest displacement (0.87 um) on 1 to 4 ranks and after either restart, 2.0e-15 to
-// 2.3e-15 of the largest fluid velocity (AMD EPYC); bounded at 1e-10 of the largest displacement, which a point lost or doubled between ranks (its force spread twice
-// or not at all) or stepped on a stale ghost plane exceeds by orders.
+// 2.3e-15 of the largest fluid velocity (AMD EPYC); bounded at 1e-10 of the largest
+// displacement, which a point lost or doubled between ranks (its force spread twice or not at
+// all) or stepped on a stale ghost plane exceeds by orders.
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
 #include "rbfib/dist/slab_fluid.hpp"
