@@ -120,10 +120,7 @@ class Snapshots {
 
   /// Writes ib's state as the next snapshot (collective on several processes).
   void write(const sim::ImmersedBoundary& ib) {
-    std::optional<sim::ImmersedBoundary::Carried> state;
-    if (parts_) state = ib.carried();
-    procs_.on_writer(parts_, [&] {
-      const sim::ImmersedBoundary& whole = state ? restored(*state) : ib;
+    on_whole(ib, [&](const sim::ImmersedBoundary& whole) {
       if (!writer_) writer_ = std::make_unique<io::SnapshotWriter>(out_, whole);
       writer_->write(whole);
     });
@@ -131,16 +128,21 @@ class Snapshots {
   /// A continued run: the series goes on from the snapshots already written up to ib's time
   /// (collective on several processes).
   void resume(const sim::ImmersedBoundary& ib) {
-    std::optional<sim::ImmersedBoundary::Carried> state;
-    if (parts_) state = ib.carried();
-    procs_.on_writer(parts_, [&] {
-      const sim::ImmersedBoundary& whole = state ? restored(*state) : ib;
+    on_whole(ib, [&](const sim::ImmersedBoundary& whole) {
       writer_ = std::make_unique<io::SnapshotWriter>(out_, whole);
       writer_->resume(whole.time());
     });
   }
 
  private:
+  /// Runs fn on process 0 with the whole run: ib itself, or on several processes the copy holding
+  /// the state gathered from all (collective).
+  template <class F>
+  void on_whole(const sim::ImmersedBoundary& ib, F&& fn) {
+    std::optional<sim::ImmersedBoundary::Carried> state;
+    if (parts_) state = ib.carried();
+    procs_.on_writer(parts_, [&] { fn(state ? restored(*state) : ib); });
+  }
   const sim::ImmersedBoundary& restored(const sim::ImmersedBoundary::Carried& state) {
     if (!copy_) copy_ = std::make_unique<sim::ImmersedBoundary>(io::build_scene(scene_));
     copy_->restore(state);
