@@ -154,6 +154,52 @@ TEST(Dense, StridedBatchedEqualsOneProductPerBatch) {
   }
 }
 
+TEST(Dense, SingleGemmIsWithinFloatRoundingInBatchesAndOneColumn) {
+  // sgemm on float copies of the operands: within gamma_{k+2} in float's unit roundoff of the exact
+  // product of those float operands (computed here in double, exactly enough); one column goes
+  // through sgemv, a batch through one product per member.
+  const double uf = std::numeric_limits<float>::epsilon() / 2;
+  const index_t m = 7, k = 300, count = 2;
+  for (index_t n : {index_t(1), index_t(5)}) {
+    const auto a = random_values(m * k * count, 11), b = random_values(k * n, 12);
+    DeviceMatrix A = DeviceMatrix::from_host(m, k * count, a.data()), B = DeviceMatrix::from_host(k, n, b.data());
+    FloatMatrix Af(m, k * count), Bf(k, n), Cf(m, n * count);
+    narrow(A.view(), Af.view());
+    narrow(B.view(), Bf.view());
+    gemm_strided_batched(Op::none, Op::none, 1.0f, Af.view().block(0, 0, m, k), m * k, Bf.view(), 0, 0.0f,
+                         Cf.view().block(0, 0, m, n), m * n, count);
+    DeviceMatrix C(m, n * count);
+    widen(Cf.view(), C.view());
+    const auto af = Af.to_host(), bf = Bf.to_host();
+    const auto c = C.to_host();
+    for (index_t q = 0; q < count; ++q)
+      for (index_t j = 0; j < n; ++j)
+        for (index_t i = 0; i < m; ++i) {
+          double exact = 0, magnitude = 0;
+          for (index_t l = 0; l < k; ++l) {
+            const double t = double(af[q * m * k + i + l * m]) * double(bf[l + j * k]);
+            exact += t;
+            magnitude += std::abs(t);
+          }
+          const double g = double(k + 2) * uf / (1 - double(k + 2) * uf);
+          EXPECT_NEAR(c[q * m * n + i + j * m], exact, g * magnitude) << "n = " << n << ", batch " << q;
+        }
+  }
+}
+
+TEST(Dense, NarrowAndWidenRoundToFloatOnBlocks) {
+  const index_t rows = 5, cols = 3;
+  const auto a = random_values(rows * cols, 13);
+  DeviceMatrix A = DeviceMatrix::from_host(rows, cols, a.data()), back(rows + 2, cols);
+  FloatMatrix F(rows + 1, cols);
+  narrow(A.view(), F.view().block(1, 0, rows, cols));
+  widen(F.view().block(1, 0, rows, cols), back.view().block(2, 0, rows, cols));
+  const auto h = back.to_host();
+  for (index_t j = 0; j < cols; ++j)
+    for (index_t i = 0; i < rows; ++i) EXPECT_EQ(h[2 + i + j * (rows + 2)], double(float(a[i + j * rows])));
+  EXPECT_THROW(narrow(A.view(), F.view()), InputError);
+}
+
 TEST(Dense, GemmRejectsMismatchedShapes) {
   DeviceMatrix A(3, 4), B(5, 2), C(3, 2);
   EXPECT_THROW(gemm(Op::none, Op::none, 1.0, A.view(), B.view(), 0.0, C.view()), InputError);

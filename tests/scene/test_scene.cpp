@@ -181,6 +181,7 @@ TEST(Scene, EveryBadInputNamesItsField) {
       {"upper: [12 mm/s, 0 mm/s, 0 mm/s]", "upper: [12 mm/s, 0 mm/s]", "domain.walls.y.upper"},
       {"preset: platelet", "preset: neutrophil", "cell_types[0].preset"},
       {"data_sites: 144\n    sample_sites: 144", "data_sites: 3\n    sample_sites: 144", "cell_types[0].data_sites"},
+      {"sample_sites: 144\n", "sample_sites: 144\n    products: half\n", "cell_types[0].products"},
       {"{type: plt,", "{type: rbc,", "cells[0].type"},
       {"center: [4 um, 3 um, 4 um]", "center: [4 um, 13 um, 4 um]", "cells[0].center[1]"},
       {"center: [4 um, 3 um, 4 um]", "center: [4 um, 0.2 um, 4 um]", "cells[0]"},  // through a wall
@@ -201,6 +202,18 @@ TEST(Scene, EveryBadInputNamesItsField) {
   EXPECT_EQ(field_of(""), "mutant");               // empty
   const std::string m = testing::message_of<InputError>([&] { parse_scene(replaced(ok, "0.1 cP", "0.1 cm"), "m"); });
   EXPECT_NE(m.find("fluid.viscosity = '0.1 cm': has the dimension length; expected dynamic viscosity"), std::string::npos) << m;
+}
+
+TEST(Scene, SinglePrecisionProductsAreReadWrittenBackAndBuilt) {
+  // cell_types[i].products: single: the type's operators are applied in single precision.
+  const std::string text = replaced(channel_scene, "sample_sites: 144\n", "sample_sites: 144\n    products: single\n");
+  const Scene s = parse_scene(text, "single");
+  ASSERT_EQ(s.types.size(), 1u);
+  EXPECT_TRUE(s.types[0].spec.single_precision_products);
+  EXPECT_FALSE(parse_scene(channel_scene, "double").types[0].spec.single_precision_products);
+  EXPECT_TRUE(parse_scene(to_yaml(s), "back").types[0].spec.single_precision_products);
+  const sim::ImmersedBoundary ib = build(s);
+  EXPECT_TRUE(ib.batch(0).type().operators().single_precision());
 }
 
 TEST(Scene, AWallTurnsAsInSection521) {

@@ -59,6 +59,9 @@ CellType::CellType(CellTypeSpec spec) : spec_(std::move(spec)) {
     operators_ = surface::sh_operators(spec_.data_sites, eval, spec_.sh_degree);
   else
     operators_ = surface::rbf_operators(spec_.data_sites, eval, spec_.basis);
+  // Single-precision products (surface/operators.hpp): the reference jets below come from the same
+  // products, so that the reference shape carries no strain beyond their rounding.
+  if (spec_.single_precision_products) operators_ = surface::in_single_precision(*operators_);
 
   // 2. Reference configuration at the data sites, n_d x 3.
   reference_host_.assign(static_cast<std::size_t>(3 * nd), 0.0);
@@ -155,6 +158,7 @@ std::string CellType::describe() const {
   return "cell type '" + name() + "': " + spec_.shape.name + "; " + to_text(n_data()) + " data sites, " +
          to_text(n_sample()) + " sample sites; " + interpolant +
          (model().bending() ? " (operators also evaluate at the data sites, for H)" : "") +
+         (spec_.single_precision_products ? "; products in single precision" : "") +
          "\n  forces: " + model().describe() +
          "\n  reference area " + to_text(area0_ * 1e8) + " um^2, volume " + to_text(volume0_ * 1e12) +
          " um^3; device memory " + to_text(double(bytes()) / 1048576.0) + " MiB";
@@ -167,10 +171,11 @@ ProductFlops product_flops(const CellTypeSpec& spec, index_t N) {
   const double cols = (spec.model.dissipation() ? 6.0 : 3.0) * double(N);
   // the sample sites' rows on X (and U); the data sites' rows (bending) on X alone
   f.jets = 2.0 * 6.0 * ns * nd * cols + 2.0 * 6.0 * (nj - ns) * nd * 3.0 * double(N);
-  f.bytes = 8.0 * 6.0 * nj * nd;
+  const double word = spec.single_precision_products ? 4.0 : 8.0;  // bytes per operator entry
+  f.bytes = word * 6.0 * nj * nd;
   if (spec.model.bending()) {
     f.bending = 2.0 * 5.0 * ns * nd * double(N);
-    f.bytes += 8.0 * 5.0 * ns * nd;
+    f.bytes += word * 5.0 * ns * nd;
   }
   return f;
 }

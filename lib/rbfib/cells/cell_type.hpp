@@ -57,6 +57,9 @@ struct CellTypeSpec {
   /// Quadrature weights on S^2 at the sample sites (sum 4 pi); empty: eq. (2.22) with phi = r.
   std::vector<double> sphere_weights;
   ForceModel model;
+  /// The force call's products in single precision (surface/operators.hpp, in_single_precision):
+  /// faster, with errors of float rounding in the jets; off by default (studies/bench_precision).
+  bool single_precision_products = false;
 };
 
 /// Flops of the dense products of one force call for N cells of a type, as performed: the jets

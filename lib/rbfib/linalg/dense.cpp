@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #if defined(RBFIB_BACKEND_CUDA)
 #include <cublas_v2.h>
@@ -24,23 +25,29 @@ void dgetrs_(const char* trans, const int* n, const int* nrhs, const double* a, 
 
 namespace rbfib::linalg {
 
-DeviceMatrix DeviceMatrix::from_host(index_t rows, index_t cols, const double* column_major) {
-  DeviceMatrix m(rows, cols);
+template <class T>
+Matrix<T> Matrix<T>::from_host(index_t rows, index_t cols, const T* column_major) {
+  Matrix m(rows, cols);
   thrust::copy(column_major, column_major + rows * cols, m.a_.begin());
   return m;
 }
 
-void DeviceMatrix::resize(index_t rows, index_t cols) {
+template <class T>
+void Matrix<T>::resize(index_t rows, index_t cols) {
   rows_ = rows;
   cols_ = cols;
   a_.resize(static_cast<std::size_t>(rows * cols));
 }
 
-std::vector<double> DeviceMatrix::to_host() const {
-  std::vector<double> h(a_.size());
+template <class T>
+std::vector<T> Matrix<T>::to_host() const {
+  std::vector<T> h(a_.size());
   thrust::copy(a_.begin(), a_.end(), h.begin());
   return h;
 }
+
+template class Matrix<double>;
+template class Matrix<float>;
 
 namespace {
 int to_int(index_t v, const char* what) {
@@ -49,8 +56,9 @@ int to_int(index_t v, const char* what) {
 }
 int ld_of(index_t ld) { return to_int(std::max<index_t>(ld, 1), "leading dimension"); }
 
-void check_gemm(Op op_a, Op op_b, const ConstMatrixView& A, const ConstMatrixView& B, const MatrixView& C,
-                index_t& m, index_t& n, index_t& k) {
+template <class T>
+void check_gemm(Op op_a, Op op_b, const ConstView<T>& A, const ConstView<T>& B, const View<T>& C, index_t& m, index_t& n,
+                index_t& k) {
   m = op_a == Op::none ? A.rows : A.cols;
   k = op_a == Op::none ? A.cols : A.rows;
   const index_t kb = op_b == Op::none ? B.rows : B.cols;
@@ -97,44 +105,101 @@ CBLAS_TRANSPOSE cblas_op(Op o) { return o == Op::none ? CblasNoTrans : CblasTran
 #endif
 }  // namespace
 
-void gemm(Op op_a, Op op_b, double alpha, ConstMatrixView A, ConstMatrixView B, double beta, MatrixView C) {
-  gemm_strided_batched(op_a, op_b, alpha, A, 0, B, 0, beta, C, 0, 1);
-}
-
-void gemm_strided_batched(Op op_a, Op op_b, double alpha, ConstMatrixView A, index_t stride_a, ConstMatrixView B,
-                          index_t stride_b, double beta, MatrixView C, index_t stride_c, index_t count) {
+namespace {
+/// C_k = alpha op(A_k) op(B_k) + beta C_k for k < count, in double (dgemm) or float (sgemm).
+template <class T>
+void gemm_batch(Op op_a, Op op_b, T alpha, ConstView<T> A, index_t stride_a, ConstView<T> B, index_t stride_b, T beta,
+                View<T> C, index_t stride_c, index_t count) {
+  constexpr bool dp = std::is_same_v<T, double>;
   index_t m, n, k;
   check_gemm(op_a, op_b, A, B, C, m, n, k);
   require(count >= 0, "gemm: batch count", count, "must be >= 0");
   if (m == 0 || n == 0 || count == 0) return;
   const int im = to_int(m, "gemm: rows"), in = to_int(n, "gemm: columns"), ik = to_int(k, "gemm: inner dimension");
 #if defined(RBFIB_BACKEND_CUDA)
-  if (count == 1)
-    cublas_check(cublasDgemm(cublas(), cu_op(op_a), cu_op(op_b), im, in, ik, &alpha, A.data, ld_of(A.ld), B.data,
-                             ld_of(B.ld), &beta, C.data, ld_of(C.ld)),
-                 "cublasDgemm");
-  else
-    cublas_check(cublasDgemmStridedBatched(cublas(), cu_op(op_a), cu_op(op_b), im, in, ik, &alpha, A.data,
-                                           ld_of(A.ld), stride_a, B.data, ld_of(B.ld), stride_b, &beta, C.data,
-                                           ld_of(C.ld), stride_c, to_int(count, "gemm: batch count")),
+  if (count == 1) {
+    if constexpr (dp)
+      cublas_check(cublasDgemm(cublas(), cu_op(op_a), cu_op(op_b), im, in, ik, &alpha, A.data, ld_of(A.ld), B.data,
+                               ld_of(B.ld), &beta, C.data, ld_of(C.ld)),
+                   "cublasDgemm");
+    else
+      cublas_check(cublasSgemm(cublas(), cu_op(op_a), cu_op(op_b), im, in, ik, &alpha, A.data, ld_of(A.ld), B.data,
+                               ld_of(B.ld), &beta, C.data, ld_of(C.ld)),
+                   "cublasSgemm");
+    return;
+  }
+  const int ic = to_int(count, "gemm: batch count");
+  if constexpr (dp)
+    cublas_check(cublasDgemmStridedBatched(cublas(), cu_op(op_a), cu_op(op_b), im, in, ik, &alpha, A.data, ld_of(A.ld),
+                                           stride_a, B.data, ld_of(B.ld), stride_b, &beta, C.data, ld_of(C.ld), stride_c, ic),
                  "cublasDgemmStridedBatched");
+  else
+    cublas_check(cublasSgemmStridedBatched(cublas(), cu_op(op_a), cu_op(op_b), im, in, ik, &alpha, A.data, ld_of(A.ld),
+                                           stride_a, B.data, ld_of(B.ld), stride_b, &beta, C.data, ld_of(C.ld), stride_c, ic),
+                 "cublasSgemmStridedBatched");
 #else
   if (n == 1) {
-    // A product with one column is a matrix-vector product: dgemv streams A once, where OpenBLAS's
-    // dgemm first packs A and then runs its kernel on a padded panel (about twice the time for an
+    // A product with one column is a matrix-vector product: gemv streams A once, where OpenBLAS's
+    // gemm first packs A and then runs its kernel on a padded panel (about twice the time for an
     // operator of tens of MB, as a surface's jets or bending derivatives of one cell).
     const int ar = to_int(A.rows, "gemm: rows of A"), ac = to_int(A.cols, "gemm: columns of A");
     const int incx = op_b == Op::none ? 1 : ld_of(B.ld);  // op(B) = B's column, or B's row
-    for (index_t b = 0; b < count; ++b)
-      cblas_dgemv(CblasColMajor, cblas_op(op_a), ar, ac, alpha, A.data + b * stride_a, ld_of(A.ld), B.data + b * stride_b, incx, beta,
-                  C.data + b * stride_c, 1);
+    for (index_t b = 0; b < count; ++b) {
+      if constexpr (dp)
+        cblas_dgemv(CblasColMajor, cblas_op(op_a), ar, ac, alpha, A.data + b * stride_a, ld_of(A.ld), B.data + b * stride_b,
+                    incx, beta, C.data + b * stride_c, 1);
+      else
+        cblas_sgemv(CblasColMajor, cblas_op(op_a), ar, ac, alpha, A.data + b * stride_a, ld_of(A.ld), B.data + b * stride_b,
+                    incx, beta, C.data + b * stride_c, 1);
+    }
     return;
   }
-  for (index_t b = 0; b < count; ++b)
-    cblas_dgemm(CblasColMajor, cblas_op(op_a), cblas_op(op_b), im, in, ik, alpha, A.data + b * stride_a, ld_of(A.ld),
-                B.data + b * stride_b, ld_of(B.ld), beta, C.data + b * stride_c, ld_of(C.ld));
+  for (index_t b = 0; b < count; ++b) {
+    if constexpr (dp)
+      cblas_dgemm(CblasColMajor, cblas_op(op_a), cblas_op(op_b), im, in, ik, alpha, A.data + b * stride_a, ld_of(A.ld),
+                  B.data + b * stride_b, ld_of(B.ld), beta, C.data + b * stride_c, ld_of(C.ld));
+    else
+      cblas_sgemm(CblasColMajor, cblas_op(op_a), cblas_op(op_b), im, in, ik, alpha, A.data + b * stride_a, ld_of(A.ld),
+                  B.data + b * stride_b, ld_of(B.ld), beta, C.data + b * stride_c, ld_of(C.ld));
+  }
 #endif
 }
+
+/// B = A converted element by element (same shapes; blocks allowed).
+template <class From, class To>
+void convert(ConstView<From> A, View<To> B, const char* what) {
+  require(A.rows == B.rows && A.cols == B.cols, what, to_text(B.rows) + " x " + to_text(B.cols),
+          "must equal the source's " + to_text(A.rows) + " x " + to_text(A.cols));
+  const From* a = A.data;
+  To* b = B.data;
+  const index_t rows = A.rows, lda = A.ld, ldb = B.ld;
+  for_each_index(A.rows * A.cols, [=] RBFIB_HD (index_t k) {
+    const index_t i = k % rows, j = k / rows;
+    b[i + j * ldb] = static_cast<To>(a[i + j * lda]);
+  });
+}
+}  // namespace
+
+void gemm(Op op_a, Op op_b, double alpha, ConstMatrixView A, ConstMatrixView B, double beta, MatrixView C) {
+  gemm_batch(op_a, op_b, alpha, A, 0, B, 0, beta, C, 0, 1);
+}
+
+void gemm_strided_batched(Op op_a, Op op_b, double alpha, ConstMatrixView A, index_t stride_a, ConstMatrixView B,
+                          index_t stride_b, double beta, MatrixView C, index_t stride_c, index_t count) {
+  gemm_batch(op_a, op_b, alpha, A, stride_a, B, stride_b, beta, C, stride_c, count);
+}
+
+void gemm(Op op_a, Op op_b, float alpha, ConstFloatView A, ConstFloatView B, float beta, FloatView C) {
+  gemm_batch(op_a, op_b, alpha, A, 0, B, 0, beta, C, 0, 1);
+}
+
+void gemm_strided_batched(Op op_a, Op op_b, float alpha, ConstFloatView A, index_t stride_a, ConstFloatView B,
+                          index_t stride_b, float beta, FloatView C, index_t stride_c, index_t count) {
+  gemm_batch(op_a, op_b, alpha, A, stride_a, B, stride_b, beta, C, stride_c, count);
+}
+
+void narrow(ConstMatrixView A, FloatView B) { convert(A, B, "narrow to float: destination shape"); }
+void widen(ConstFloatView A, MatrixView B) { convert(A, B, "widen to double: destination shape"); }
 
 LuFactors lu_factor(const DeviceMatrix& A, const char* what) {
   require(A.rows() == A.cols(), std::string(what) + ": LU of a non-square matrix, rows", A.rows(),

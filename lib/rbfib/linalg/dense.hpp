@@ -13,29 +13,38 @@
 
 namespace rbfib::linalg {
 
-/// A column-major view of device memory: A(i, j) = data[i + j * ld], ld >= rows.
-struct MatrixView {
-  double* data = nullptr;
+/// A column-major view of device memory: A(i, j) = data[i + j * ld], ld >= rows (T = double, or
+/// float for operators stored in single precision).
+template <class T>
+struct View {
+  T* data = nullptr;
   index_t rows = 0, cols = 0, ld = 0;
   /// The block of rows [r0, r0 + nr) and columns [c0, c0 + nc).
-  MatrixView block(index_t r0, index_t c0, index_t nr, index_t nc) const { return {data + r0 + c0 * ld, nr, nc, ld}; }
+  View block(index_t r0, index_t c0, index_t nr, index_t nc) const { return {data + r0 + c0 * ld, nr, nc, ld}; }
 };
-struct ConstMatrixView {
-  const double* data = nullptr;
+template <class T>
+struct ConstView {
+  const T* data = nullptr;
   index_t rows = 0, cols = 0, ld = 0;
-  ConstMatrixView() = default;
-  ConstMatrixView(const double* d, index_t r, index_t c, index_t l) : data(d), rows(r), cols(c), ld(l) {}
-  ConstMatrixView(const MatrixView& v) : data(v.data), rows(v.rows), cols(v.cols), ld(v.ld) {}
-  ConstMatrixView block(index_t r0, index_t c0, index_t nr, index_t nc) const { return {data + r0 + c0 * ld, nr, nc, ld}; }
+  ConstView() = default;
+  ConstView(const T* d, index_t r, index_t c, index_t l) : data(d), rows(r), cols(c), ld(l) {}
+  ConstView(const View<T>& v) : data(v.data), rows(v.rows), cols(v.cols), ld(v.ld) {}
+  ConstView block(index_t r0, index_t c0, index_t nr, index_t nc) const { return {data + r0 + c0 * ld, nr, nc, ld}; }
 };
+using MatrixView = View<double>;
+using ConstMatrixView = ConstView<double>;
+using FloatView = View<float>;
+using ConstFloatView = ConstView<float>;
 
-/// A dense column-major matrix that owns device storage (ld = rows).
-class DeviceMatrix {
+/// A dense column-major matrix that owns device storage (ld = rows); Matrix<double> and
+/// Matrix<float> are instantiated.
+template <class T>
+class Matrix {
  public:
-  DeviceMatrix() = default;
-  DeviceMatrix(index_t rows, index_t cols) : rows_(rows), cols_(cols), a_(static_cast<std::size_t>(rows * cols), 0.0) {}
-  /// Uploads a host column-major array of rows * cols doubles.
-  static DeviceMatrix from_host(index_t rows, index_t cols, const double* column_major);
+  Matrix() = default;
+  Matrix(index_t rows, index_t cols) : rows_(rows), cols_(cols), a_(static_cast<std::size_t>(rows * cols), T(0)) {}
+  /// Uploads a host column-major array of rows * cols values.
+  static Matrix from_host(index_t rows, index_t cols, const T* column_major);
 
   index_t rows() const { return rows_; }
   index_t cols() const { return cols_; }
@@ -43,19 +52,21 @@ class DeviceMatrix {
   bool empty() const { return rows_ == 0 || cols_ == 0; }
   /// Resizes (contents undefined after a change of shape).
   void resize(index_t rows, index_t cols);
-  MatrixView view() { return {ptr(a_), rows_, cols_, rows_}; }
-  ConstMatrixView view() const { return {ptr(a_), rows_, cols_, rows_}; }
-  dvec& storage() { return a_; }
-  const dvec& storage() const { return a_; }
+  View<T> view() { return {ptr(a_), rows_, cols_, rows_}; }
+  ConstView<T> view() const { return {ptr(a_), rows_, cols_, rows_}; }
+  device_vector<T>& storage() { return a_; }
+  const device_vector<T>& storage() const { return a_; }
   /// Downloads to a host column-major array.
-  std::vector<double> to_host() const;
+  std::vector<T> to_host() const;
   /// Device bytes held.
-  std::size_t bytes() const { return a_.size() * sizeof(double); }
+  std::size_t bytes() const { return a_.size() * sizeof(T); }
 
  private:
   index_t rows_ = 0, cols_ = 0;
-  dvec a_;
+  device_vector<T> a_;
 };
+using DeviceMatrix = Matrix<double>;
+using FloatMatrix = Matrix<float>;
 
 enum class Op { none, transpose };
 
@@ -67,6 +78,16 @@ void gemm(Op op_a, Op op_b, double alpha, ConstMatrixView A, ConstMatrixView B, 
 /// gemmStridedBatched; on the CPU one dgemm per k (each threaded by OpenBLAS).
 void gemm_strided_batched(Op op_a, Op op_b, double alpha, ConstMatrixView A, index_t stride_a, ConstMatrixView B,
                           index_t stride_b, double beta, MatrixView C, index_t stride_c, index_t count);
+
+/// The same in single precision (BLAS sgemm; cuBLAS Sgemm): products with an operator stored in
+/// float (surface/operators.hpp), accumulated in float by the BLAS kernels.
+void gemm(Op op_a, Op op_b, float alpha, ConstFloatView A, ConstFloatView B, float beta, FloatView C);
+void gemm_strided_batched(Op op_a, Op op_b, float alpha, ConstFloatView A, index_t stride_a, ConstFloatView B,
+                          index_t stride_b, float beta, FloatView C, index_t stride_c, index_t count);
+
+/// B = A rounded to float, and B = A widened to double (same shapes; blocks allowed).
+void narrow(ConstMatrixView A, FloatView B);
+void widen(ConstFloatView A, MatrixView B);
 
 /// LU factors with partial pivoting in LAPACK form: P A = L U with unit lower L and U packed in
 /// one n x n matrix, pivots ipiv (1-based: row i was interchanged with row ipiv[i], in order).

@@ -303,6 +303,7 @@ CellTypeEntry read_type(const Fields& f) {
   const int degree = preset == "chapter3_red_cell" && f.has("degree") ? int(f.integer("degree", 1, 40)) : 19;
   CellTypeEntry t = cell_type(f.string("name"), preset, data, sample, radius, degree);
   if (f.has("model")) t.spec.model = read_model(f.map("model"));
+  if (f.has("products")) t.spec.single_precision_products = f.choice("products", {"double", "single"}) == "single";
   f.finish();
   return t;
 }
@@ -979,6 +980,7 @@ std::string to_yaml(const Scene& s, const std::string& comment) {
     o << ", sample_sites: " << t.spec.sample_sites.size();
     if (t.preset == "skalak_sphere") o << ", radius: " << q(t.radius, "cm");
     o << ", model: " << model_yaml(t.spec.model);
+    if (t.spec.single_precision_products) o << ", products: single";
     o << "}\n";
   }
   if (!s.cells.empty()) o << "cells:\n";
@@ -1052,7 +1054,8 @@ std::string describe(const Scene& s) {
   for (const CellTypeEntry& t : s.types) {
     const auto n = std::count_if(s.cells.begin(), s.cells.end(), [&](const CellEntry& c) { return c.type == t.spec.name; });
     o << "  cell type '" << t.spec.name << "' (preset " << t.preset << "): " << t.spec.data_sites.size() << " data / "
-      << t.spec.sample_sites.size() << " sample sites; " << t.spec.model.describe() << "; " << n << " cell(s)\n";
+      << t.spec.sample_sites.size() << " sample sites; " << t.spec.model.describe()
+      << (t.spec.single_precision_products ? "; products in single precision" : "") << "; " << n << " cell(s)\n";
   }
   for (const PointSetEntry& p : s.point_sets) {
     o << "  tethered points '" << p.name << "': " << (p.surface.spiral ? p.surface.points : index_t(p.surface.lattice[0]) * p.surface.lattice[1]) << " points, ";

@@ -71,6 +71,7 @@ std::shared_ptr<const SurfaceOperators> sh_operators(const SphereSites& interp, 
   harmonic_matrices(eval, M, all);
   upload_stacked(E, *ops);
   ops->data_sites = interp.size();
+  ops->reproduces_constants = true;
   ops->description = "spherical harmonics, degree " + to_text(M) + ", m = " + to_text(interp.size()) +
                      " interpolation sites, n = " + to_text(eval.size()) + " evaluation sites";
   return ops;
@@ -87,10 +88,80 @@ linalg::ConstMatrixView operand(const SurfaceOperators& ops, linalg::ConstMatrix
   linalg::lu_solve(ops.lu, linalg::Op::none, work.coefficients.view());
   return work.coefficients.view();
 }
+
+/// Single precision: work.in32 = the float operand of F - s (s_j = F(0, j), kept in work.shift;
+/// solved by the LU factors first for a factored set).
+void single_operand(const SurfaceOperators& ops, linalg::ConstMatrixView F, OperatorWorkspace& work) {
+  require(F.rows == ops.n_data(), "surface operators: rows of the data-site fields", F.rows,
+          "must equal the number of data sites " + to_text(ops.n_data()));
+  const index_t rows = F.rows, cols = F.cols, ld = F.ld;
+  work.shift.resize(static_cast<std::size_t>(cols));
+  work.coefficients.resize(rows, cols);
+  work.in32.resize(rows, cols);
+  if (rows == 0 || cols == 0) return;
+  const double* f = F.data;
+  double* s = ptr(work.shift);
+  double* c = ptr(work.coefficients.storage());
+  for_each_index(cols, [=] RBFIB_HD (index_t j) { s[j] = f[j * ld]; });
+  for_each_index(rows * cols, [=] RBFIB_HD (index_t k) {
+    const index_t i = k % rows, j = k / rows;
+    c[k] = f[i + j * ld] - s[j];
+  });
+  if (ops.factored()) linalg::lu_solve(ops.lu, linalg::Op::none, work.coefficients.view());
+  linalg::narrow(work.coefficients.view(), work.in32.view());
+}
+
+/// Single precision, after single_operand: the operator rows [row0, row0 + rows) on the first
+/// `cols` columns, in float; value = V in + s (when value.rows > 0) and derivative q into rows
+/// q stride + i of derivatives (when derivatives.rows > 0).
+void single_products(const SurfaceOperators& ops, index_t row0, index_t rows, index_t cols, linalg::MatrixView value,
+                     linalg::MatrixView derivatives, index_t stride, OperatorWorkspace& work) {
+  using linalg::Op;
+  const index_t ns = ops.n_sample(), k = ops.value32.cols();
+  const linalg::ConstFloatView in = work.in32.view().block(0, 0, k, cols);
+  if (rows == 0 || cols == 0) return;
+  if (value.rows > 0) {
+    work.out32.resize(rows, cols);
+    linalg::gemm(Op::none, Op::none, 1.0f, ops.value32.view().block(row0, 0, rows, k), in, 0.0f, work.out32.view());
+    const float* o = ptr(work.out32.storage());
+    const double* s = ptr(work.shift);
+    double* v = value.data;
+    const index_t ldv = value.ld;
+    for_each_index(rows * cols, [=] RBFIB_HD (index_t e) {
+      const index_t i = e % rows, j = e / rows;
+      v[i + j * ldv] = double(o[e]) + s[j];
+    });
+  }
+  if (derivatives.rows > 0) {
+    work.out32.resize(derivative_count * rows, cols);
+    linalg::gemm_strided_batched(Op::none, Op::none, 1.0f, ops.derivatives32.view().block(row0, 0, rows, k), ns, in, 0, 0.0f,
+                                 work.out32.view().block(0, 0, rows, cols), rows, derivative_count);
+    for (int q = 0; q < derivative_count; ++q)
+      linalg::widen(linalg::ConstFloatView(work.out32.view()).block(q * rows, 0, rows, cols),
+                    derivatives.block(q * stride, 0, rows, cols));
+  }
+}
 }  // namespace
+
+std::shared_ptr<const SurfaceOperators> in_single_precision(const SurfaceOperators& ops) {
+  require(ops.reproduces_constants, "single-precision surface operators: interpolant", ops.description,
+          "must contain the constant (spherical harmonics, or an RBF set with sh_degree >= 0)");
+  auto out = std::make_shared<SurfaceOperators>(ops);
+  out->value32.resize(ops.value.rows(), ops.value.cols());
+  out->derivatives32.resize(ops.derivatives.rows(), ops.derivatives.cols());
+  linalg::narrow(ops.value.view(), out->value32.view());
+  linalg::narrow(ops.derivatives.view(), out->derivatives32.view());
+  out->description = ops.description + ", products in single precision";
+  return out;
+}
 
 void apply_operators(const SurfaceOperators& ops, linalg::ConstMatrixView F, linalg::MatrixView value,
                      linalg::MatrixView derivatives, OperatorWorkspace& work) {
+  if (ops.single_precision()) {
+    single_operand(ops, F, work);
+    single_products(ops, 0, ops.n_sample(), F.cols, value, derivatives, ops.n_sample(), work);
+    return;
+  }
   const linalg::ConstMatrixView in = operand(ops, F, work);
   if (value.rows > 0) linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, ops.value.view(), in, 0.0, value);
   if (derivatives.rows > 0)
@@ -105,9 +176,19 @@ void apply_operators_part(const SurfaceOperators& ops, linalg::ConstMatrixView F
   require(value.rows == ns && value.cols == cols && derivatives.rows == derivative_count * ns && derivatives.cols == cols,
           "surface operators: outputs", to_text(value.rows) + " x " + to_text(value.cols),
           "must be n_s x cols and 5 n_s x cols (" + to_text(ns) + " x " + to_text(cols) + ")");
+  const index_t rest = ns - rows;
+  if (ops.single_precision()) {
+    single_operand(ops, F, work);
+    single_products(ops, 0, rows, cols, value.block(0, 0, rows, cols), derivatives.block(0, 0, derivative_count * ns, cols), ns,
+                    work);
+    if (rest > 0 && narrow > 0)
+      single_products(ops, rows, rest, narrow, value.block(rows, 0, rest, narrow),
+                      derivatives.block(rows, 0, derivative_count * ns - rows, narrow), ns, work);
+    return;
+  }
   const linalg::ConstMatrixView in = operand(ops, F, work);
   const linalg::ConstMatrixView V = ops.value.view(), D = ops.derivatives.view();
-  const index_t k = V.cols, rest = ns - rows;
+  const index_t k = V.cols;
   using linalg::Op;
   // sites [0, rows), every column; derivative q in rows q ns + i of both D and the output
   linalg::gemm(Op::none, Op::none, 1.0, V.block(0, 0, rows, k), in, 0.0, value.block(0, 0, rows, cols));
@@ -128,6 +209,11 @@ void apply_operators_rows(const SurfaceOperators& ops, linalg::ConstMatrixView F
           "[" + to_text(row0) + ", " + to_text(row0 + rows) + ")", "must lie in [0, " + to_text(ns) + ")");
   require(derivatives.rows == 0 || derivatives.rows == derivative_count * rows, "surface operators: derivative rows",
           derivatives.rows, "must be 5 x " + to_text(rows));
+  if (ops.single_precision()) {
+    single_operand(ops, F, work);
+    single_products(ops, row0, rows, F.cols, value, derivatives, rows, work);
+    return;
+  }
   const linalg::ConstMatrixView in = operand(ops, F, work);
   const linalg::ConstMatrixView V = ops.value.view(), D = ops.derivatives.view();
   if (value.rows > 0) linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, V.block(row0, 0, rows, V.cols), in, 0.0, value);
@@ -148,6 +234,7 @@ std::shared_ptr<const SurfaceOperators> select_sample_sites(const SurfaceOperato
     linalg::copy(ops.derivatives.view().block(q * ns + row0, 0, rows, k), out->derivatives.view().block(q * rows, 0, rows, k));
   out->lu = ops.lu;
   out->data_sites = ops.data_sites;
+  out->reproduces_constants = ops.reproduces_constants;
   out->condition_estimate = ops.condition_estimate;
   out->description = ops.description + " (sample sites " + to_text(row0) + " .. " + to_text(row0 + rows - 1) + ")";
   return out;
@@ -282,6 +369,7 @@ std::shared_ptr<const SurfaceOperators> rbf_operators(const SphereSites& data, c
   for (int q = 0; q < 6; ++q) L[q] = LT.block(0, q * ns, nd, ns).transpose();
   upload_stacked(L, *ops);
   ops->data_sites = nd;
+  ops->reproduces_constants = basis.sh_degree >= 0;
   ops->description = "PHS r^" + to_text(p) + " + harmonics of degree <= " + to_text(basis.sh_degree) +
                      ", n_d = " + to_text(nd) + " data sites, n_s = " + to_text(ns) + " sample sites";
   return ops;

@@ -24,6 +24,16 @@
 // - polyharmonic splines phi(r) = r^p (p odd) on the chord distance of S^2 (eq. 2.18), augmented
 //   by real harmonics of degree <= sh_degree (eqs. 2.15-2.17): L = [L Phi, L P] A^{-1}, first n_d
 //   columns (eq. 2.19), assembled. sh_degree = 5 for red cells, 0 (a constant) for platelets.
+//
+// Single precision (in_single_precision, optional, beyond the seed): value and derivatives are
+// also kept rounded to float and the products run in float (sgemm, accumulated in float by the
+// BLAS kernels: no BLAS offers float operators with double accumulation, and on the CPU only the
+// float arithmetic, not the halved operator bytes, buys speed: the products are compute bound).
+// Each column of F is first shifted by its value at data site 0 (for positions, by a point of the
+// cell, so that float rounds the cell's shape, not its place in the box): the derivative
+// operators annihilate constants and the value operator reproduces them (both interpolants here
+// contain the constant), so the shift is added back to the values in double and the derivatives
+// need none. The coefficients of the factored form are still solved in double.
 #include "rbfib/linalg/dense.hpp"
 #include "rbfib/surface/sphere.hpp"
 
@@ -40,15 +50,20 @@ struct SurfaceOperators {
   linalg::DeviceMatrix derivatives;  ///< 5 n_s x k
   /// Factored harmonic form: the LU factors of Y (m x m); empty for assembled operators (RBF).
   linalg::LuFactors lu;
+  /// Single precision: value and derivatives rounded to float (empty unless in_single_precision).
+  linalg::FloatMatrix value32, derivatives32;
+  /// The interpolant contains the constant (value reproduces it, derivatives annihilate it).
+  bool reproduces_constants = false;
   index_t data_sites = 0;
   double condition_estimate = 0;  ///< reciprocal-condition estimate of the interpolation matrix
   std::string description;
 
   bool factored() const { return lu.n() > 0; }
+  bool single_precision() const { return !value32.empty(); }
   index_t n_data() const { return data_sites; }
   index_t n_sample() const { return value.rows(); }
   /// Device bytes held (what each cell type costs in memory).
-  std::size_t bytes() const { return value.bytes() + derivatives.bytes() + lu.bytes(); }
+  std::size_t bytes() const { return value.bytes() + derivatives.bytes() + lu.bytes() + value32.bytes() + derivatives32.bytes(); }
 };
 
 /// Spherical-harmonic interpolation operators (eqs. 85-86). Throws InputError if the sites are
@@ -65,9 +80,17 @@ struct PhsBasis {
 std::shared_ptr<const SurfaceOperators> rbf_operators(const SphereSites& data, const SphereSites& sample,
                                                       PhsBasis basis);
 
-/// Workspace of apply_operators (the coefficients of the factored form), reused between calls.
+/// The same operators, with value and derivatives also rounded to float: apply_operators and the
+/// variants below then run their products in single precision (see the top of this file).
+/// Throws InputError for an interpolant without the constant (an RBF set with sh_degree < 0).
+std::shared_ptr<const SurfaceOperators> in_single_precision(const SurfaceOperators& ops);
+
+/// Workspace of apply_operators (the coefficients of the factored form; the shifted columns and
+/// the float operands and results of the single-precision products), reused between calls.
 struct OperatorWorkspace {
   linalg::DeviceMatrix coefficients;
+  dvec shift;
+  linalg::FloatMatrix in32, out32;
 };
 
 /// value = V F and derivatives = D F for the fields F (n_d x cols, any number of columns): two
@@ -90,7 +113,7 @@ void apply_operators_rows(const SurfaceOperators& ops, linalg::ConstMatrixView F
                           linalg::MatrixView value, linalg::MatrixView derivatives, OperatorWorkspace& work);
 
 /// The operators of the sample sites [row0, row0 + rows) as a set of their own (device copies;
-/// the LU factors of a factored set are copied too).
+/// the LU factors of a factored set are copied too; double precision only).
 std::shared_ptr<const SurfaceOperators> select_sample_sites(const SurfaceOperators& ops, index_t row0, index_t rows);
 
 /// G = I^T F: the transpose of the value operator applied to F (n_s x cols), giving n_d x cols
