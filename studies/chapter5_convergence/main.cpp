@@ -12,7 +12,9 @@
 // The seed's printed orders are this formula one index higher: its row r holds p from
 // eps_{r-2} / eps_{r-1} solved with r - 1 in place of r - 2 (the columns order_*_seed_index).
 // Each grid's scene is kept as DIR/scene_r<r>.yaml (`build/bin/rbfib run` reruns it); at full
-// scale its run keeps DIR/checkpoint_r<r>.h5 and continues over sittings (--sitting SECONDS).
+// scale its run keeps DIR/checkpoint_r<r>.h5 and continues over sittings (--sitting SECONDS), and
+// a finished grid keeps only what the comparison takes, DIR/grid_r<r>.h5 (a few hundred kB, where
+// the finished checkpoint of r = 5 is 50 MB), which `make keep-chapter5_convergence` can commit.
 //
 // Run:   build/studies/study_chapter5_convergence --scale quick --out runs/chapter5_convergence
 #include "common/study.hpp"
@@ -20,6 +22,7 @@
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/series.hpp"
 #include "rbfib/core/units.hpp"
+#include "rbfib/io/hdf5.hpp"
 #include "rbfib/run/run.hpp"
 #include "rbfib/scene/scene.hpp"
 #include "rbfib/sim/ib_step.hpp"
@@ -28,6 +31,7 @@
 #include "rbfib/surface/quadrature.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 using namespace rbfib;
@@ -66,6 +70,58 @@ scene::Scene relaxation_scene(int r, double t_end) {
   return sc;
 }
 
+/// A finished grid's comparison data (DIR/grid_r<r>.h5): the velocity at the coarse centres, the
+/// surface at the evaluation points, the volume change, the run's steps and times, and the scene it
+/// ran, so that a file of another scene is never taken for this one.
+constexpr const char* grid_format = "rbfib chapter5_convergence grid 1";
+
+void write_grid(const std::string& path, const std::string& scene_text, const Run& run) {
+  namespace h5 = io::h5;
+  const std::string tmp = path + ".tmp";
+  {
+    const h5::Id file = h5::create_file(tmp);
+    h5::attribute(file, "format", std::string(grid_format));
+    h5::write_bytes(file, "scene", scene_text);
+    h5::attribute(file, "r", run.r);
+    h5::attribute(file, "steps", run.steps);
+    h5::attribute(file, "seconds", run.seconds);
+    h5::attribute(file, "seconds_per_step", run.seconds_per_step);
+    h5::attribute(file, "volume_change", run.volume_change);
+    h5::attribute(file, "commit", run.commit);
+    const host_vector<double> u = run.u_centres;
+    h5::write(file, "u_centres", u.data(), {hsize_t(u.size())}, "cm/s");
+    h5::write(file, "X", run.X.data(), {hsize_t(run.X.size())}, "cm");
+    h5::flush_and_sync(file, tmp);
+  }
+  h5::replace(tmp, path);
+}
+
+/// Reads DIR/grid_r<r>.h5 into run; false (and a line saying why, when the file is there) unless it
+/// holds grid r of this very scene.
+bool read_grid(const std::string& path, const std::string& scene_text, int r, const st::Options& opt, Run& run) {
+  namespace h5 = io::h5;
+  if (!std::filesystem::exists(path)) return false;
+  const h5::Id file = h5::open_file(path);
+  std::string format, scene, commit;
+  std::vector<double> u;
+  bool ok = file.valid() && h5::read_attribute(file, "format", format) && format == grid_format && h5::read_bytes(file, "scene", scene) &&
+            h5::read_attribute(file, "commit", commit) && h5::read(file, "u_centres", u) && h5::read(file, "X", run.X);
+  int steps = 0;
+  ok = ok && h5::read_attribute(file, "steps", H5T_NATIVE_INT, &steps) &&
+       h5::read_attribute(file, "seconds", H5T_NATIVE_DOUBLE, &run.seconds) &&
+       h5::read_attribute(file, "seconds_per_step", H5T_NATIVE_DOUBLE, &run.seconds_per_step) &&
+       h5::read_attribute(file, "volume_change", H5T_NATIVE_DOUBLE, &run.volume_change);
+  if (!ok || scene != scene_text) {
+    st::log(opt, "r = " + to_text(r) + ": " + path + (ok ? " holds another scene" : " is malformed") + ": the grid is run again");
+    return false;
+  }
+  run.r = r;
+  run.steps = steps;
+  run.commit = commit;
+  run.u_centres = dvec(u.begin(), u.end());
+  return true;
+}
+
 /// Grid r's run through the library's run loop (run/run.hpp). Runs kept over sittings (full
 /// scale, or --resumable) keep DIR/checkpoint_r<r>.h5, written every five minutes of wall time
 /// and at the sitting's end, and continue from it; a finished grid is its checkpoint marked
@@ -78,6 +134,15 @@ Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& 
   const std::string text = scene::to_yaml(relaxation_scene(r, t_end),
                                           "chapter5_convergence: a stretched red cell (Skalak only) relaxing in a channel (Sec. 5.1.1), r = " + to_text(r));
   std::ofstream(opt.out_dir + "/" + file) << text;
+  const std::string grid_file = opt.out_dir + "/grid_r" + to_text(r) + ".h5";
+  if (opt.keeps_runs()) {
+    Run done;
+    if (read_grid(grid_file, text, r, opt, done)) {
+      st::log(opt, "r = " + to_text(r) + ": finished earlier (" + grid_file + ", " + to_text(done.steps) + " steps)");
+      finished = true;
+      return done;
+    }
+  }
   run::Options o;
   o.t_end = t_end;
   o.label = st::source_commit(opt);
@@ -125,6 +190,10 @@ Run relax(int r, double t_end, const dvec& centres, const surface::SphereSites& 
     for (int d = 0; d < 3; ++d) run.X[d * J.size() + i] = J[i].x[d];
   st::log(opt, "r = " + to_text(r) + ": " + to_text(run.steps) + " steps in " + to_text(run.seconds) + " s, volume change " +
                    to_text(run.volume_change));
+  if (opt.keeps_runs()) {  // what the comparison takes replaces the finished checkpoint (a whole grid)
+    write_grid(grid_file, text, run);
+    std::filesystem::remove(o.checkpoint);
+  }
   return run;
 }
 

@@ -22,24 +22,13 @@ class Reader {
   explicit Reader(const std::string& path) : path_(path) {}
   [[noreturn]] void fail(const std::string& what) const { throw InputError("checkpoint " + path_, what, "missing or malformed"); }
   dvec array(hid_t where, const char* name) const {
-    if (H5Lexists(where, name, H5P_DEFAULT) <= 0) fail(name);
-    Id set{H5Dopen2(where, name, H5P_DEFAULT), H5Dclose};
-    Id space{H5Dget_space(set), H5Sclose};
-    if (H5Sget_simple_extent_ndims(space) != 1) fail(name);
-    hsize_t n = 0;
-    H5Sget_simple_extent_dims(space, &n, nullptr);
-    std::vector<double> h(n);
-    if (n > 0 && H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, h.data()) < 0) fail(name);
+    std::vector<double> h;
+    if (!h5::read(where, name, h)) fail(name);
     return dvec(h.begin(), h.end());
   }
   std::string bytes(hid_t where, const char* name) const {
-    if (H5Lexists(where, name, H5P_DEFAULT) <= 0) fail(name);
-    Id set{H5Dopen2(where, name, H5P_DEFAULT), H5Dclose};
-    Id space{H5Dget_space(set), H5Sclose};
-    hsize_t n = 0;
-    H5Sget_simple_extent_dims(space, &n, nullptr);
-    std::string s(n, '\0');
-    if (n > 0 && H5Dread(set, H5T_NATIVE_CHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, s.data()) < 0) fail(name);
+    std::string s;
+    if (!h5::read_bytes(where, name, s)) fail(name);
     return s;
   }
   template <class T>
@@ -49,13 +38,8 @@ class Reader {
     return v;
   }
   std::string string_attribute(hid_t where, const char* name) const {
-    if (H5Aexists(where, name) <= 0) fail(std::string("attribute ") + name);
-    Id a{H5Aopen(where, name, H5P_DEFAULT), H5Aclose};
-    Id type{H5Aget_type(a), H5Tclose};
-    const std::size_t n = H5Tget_size(type);
-    std::string s(n, '\0');
-    if (H5Aread(a, type, s.data()) < 0) fail(std::string("attribute ") + name);
-    s.resize(s.find('\0') == std::string::npos ? n : s.find('\0'));
+    std::string s;
+    if (!h5::read_attribute(where, name, s)) fail(std::string("attribute ") + name);
     return s;
   }
 
@@ -168,13 +152,8 @@ void write_checkpoint(const std::string& path, const std::string& scene_yaml, co
 Checkpoint read_checkpoint(const std::string& path) {
   const Reader r(path);
   if (!std::filesystem::exists(path)) throw InputError("checkpoint", path, "does not exist");
-  H5E_auto2_t handler;
-  void* data;
-  H5Eget_auto2(H5E_DEFAULT, &handler, &data);
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // our messages, not HDF5's stack dumps
-  Id file{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
-  H5Eset_auto2(H5E_DEFAULT, handler, data);
-  if (file < 0) throw InputError("checkpoint", path, "is not a readable HDF5 file");
+  const Id file = h5::open_file(path);
+  if (!file.valid()) throw InputError("checkpoint", path, "is not a readable HDF5 file");
   const std::string version = r.string_attribute(file, "format");
   if (version != format && version != format_1) r.fail("format (expected '" + std::string(format) + "')");
   Checkpoint k;

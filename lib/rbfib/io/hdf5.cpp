@@ -42,6 +42,17 @@ Id create_file(const std::string& path) {
   return f;
 }
 
+Id open_file(const std::string& path) {
+  if (!std::filesystem::exists(path)) return Id(-1, H5Fclose);
+  H5E_auto2_t handler;
+  void* data;
+  H5Eget_auto2(H5E_DEFAULT, &handler, &data);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // the caller's message, not HDF5's stack dump
+  Id f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  H5Eset_auto2(H5E_DEFAULT, handler, data);
+  return f;
+}
+
 Id create_group(hid_t where, const std::string& name) {
   Id g(H5Gcreate2(where, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
   if (!g.valid()) throw std::runtime_error("HDF5: cannot create group " + name);
@@ -77,6 +88,41 @@ bool read_attribute(hid_t where, const std::string& name, hid_t type, void* valu
   if (H5Aexists(where, name.c_str()) <= 0) return false;
   Id a(H5Aopen(where, name.c_str(), H5P_DEFAULT), H5Aclose);
   return a.valid() && H5Aread(a, type, value) >= 0;
+}
+
+bool read(hid_t where, const std::string& name, std::vector<double>& values) {
+  if (H5Lexists(where, name.c_str(), H5P_DEFAULT) <= 0) return false;
+  Id set(H5Dopen2(where, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!set.valid()) return false;
+  Id space(H5Dget_space(set), H5Sclose);
+  if (H5Sget_simple_extent_ndims(space) != 1) return false;
+  hsize_t n = 0;
+  H5Sget_simple_extent_dims(space, &n, nullptr);
+  values.assign(n, 0.0);
+  return n == 0 || H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0;
+}
+
+bool read_bytes(hid_t where, const std::string& name, std::string& bytes) {
+  if (H5Lexists(where, name.c_str(), H5P_DEFAULT) <= 0) return false;
+  Id set(H5Dopen2(where, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!set.valid()) return false;
+  Id space(H5Dget_space(set), H5Sclose);
+  hsize_t n = 0;
+  H5Sget_simple_extent_dims(space, &n, nullptr);
+  bytes.assign(n, '\0');
+  return n == 0 || H5Dread(set, H5T_NATIVE_CHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) >= 0;
+}
+
+bool read_attribute(hid_t where, const std::string& name, std::string& value) {
+  if (H5Aexists(where, name.c_str()) <= 0) return false;
+  Id a(H5Aopen(where, name.c_str(), H5P_DEFAULT), H5Aclose);
+  if (!a.valid()) return false;
+  Id type(H5Aget_type(a), H5Tclose);
+  const std::size_t n = H5Tget_size(type);
+  value.assign(n, '\0');
+  if (H5Aread(a, type, value.data()) < 0) return false;
+  value.resize(value.find('\0') == std::string::npos ? n : value.find('\0'));
+  return true;
 }
 
 void flush_and_sync(hid_t file, const std::string& path) {

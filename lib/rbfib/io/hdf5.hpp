@@ -29,6 +29,9 @@ class Id {
 };
 
 Id create_file(const std::string& path);
+/// Opens an existing file for reading; an invalid Id (no HDF5 error stack printed) when it is
+/// missing or not HDF5.
+Id open_file(const std::string& path);
 Id create_group(hid_t where, const std::string& name);
 
 /// A dataset of doubles (or 64-bit integers) of the given shape (row-major, last index fastest),
@@ -46,6 +49,12 @@ void attribute(hid_t where, const std::string& name, const std::string& value);
 /// Reads a scalar attribute of the given type into value; false if it is missing or unreadable
 /// (checked first, so HDF5 prints no error stack).
 bool read_attribute(hid_t where, const std::string& name, hid_t type, void* value);
+
+/// Reads a one-dimensional dataset of doubles, a dataset of bytes, a string attribute; false if it
+/// is missing or malformed (checked first, so HDF5 prints no error stack).
+bool read(hid_t where, const std::string& name, std::vector<double>& values);
+bool read_bytes(hid_t where, const std::string& name, std::string& bytes);
+bool read_attribute(hid_t where, const std::string& name, std::string& value);
 
 /// Flushes the file, then fsyncs path.
 void flush_and_sync(hid_t file, const std::string& path);
