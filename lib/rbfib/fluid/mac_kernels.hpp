@@ -1,7 +1,8 @@
 #pragma once
 // Pointwise kernels of the MAC-grid operators (Section 2.1): the centred difference D_a and average
 // A_a on staggered fields, the divergence, the gradient, and the conservative advection of eq. 2.5
-// (Morinishi's Div.-S2). One grid index per call; launches in mac_operators.cpp.
+// (Morinishi's Div.-S2). A kernel's at(p, i) takes one grid index p and its indices i; for_each_point
+// launches it over a box (mac_operators.cpp).
 //
 // Advection reads a padded copy of each velocity component: one extra layer on both ends of every
 // axis (index -1 and n), filled by periodic wrap, by the boundary value (normal component, g = 1:
@@ -9,6 +10,47 @@
 #include "rbfib/grid/box.hpp"
 
 namespace rbfib::kernels {
+
+/// One launch index per row of x: the row's points in order, their indices counted rather than
+/// divided out of p (two 64-bit divisions per point cost more than these kernels' arithmetic), in
+/// a loop the host compiler can vectorize.
+template <class K>
+struct RowsOf {
+  BoxShape s;
+  K k;
+  RBFIB_HD void operator()(index_t row) const {
+    int i[3] = {0, int(row % s.n[1]), int(row / s.n[1])};
+    const index_t base = row * s.n[0];
+    for (int i0 = 0; i0 < s.n[0]; ++i0) {
+      i[0] = i0;
+      k.at(base + i0, i);
+    }
+  }
+};
+
+/// One launch index per point.
+template <class K>
+struct PointsOf {
+  BoxShape s;
+  K k;
+  RBFIB_HD void operator()(index_t p) const {
+    int i[3];
+    s.split(p, i);
+    k.at(p, i);
+  }
+};
+
+/// Runs k.at(p, i) at every point of box s: by rows on the CPU backend (a row is a cache-friendly
+/// unit of work), by points on the CUDA backend (one thread each, coalesced).
+template <class K>
+void for_each_point(const BoxShape& s, const K& k) {
+  const index_t n = index_t(s.n[0]) * s.n[1] * s.n[2];
+#if defined(RBFIB_BACKEND_CUDA)
+  for_each_index(n, PointsOf<K>{s, k});
+#else
+  for_each_index(n / s.n[0], RowsOf<K>{s, k});
+#endif
+}
 
 /// A box with one ghost layer on both ends of each of its dims axes.
 struct PaddedShape {
@@ -47,11 +89,7 @@ struct PadInterior {
   PaddedShape ps;
   const double* u;
   double* out;
-  RBFIB_HD void operator()(index_t p) const {
-    int i[3];
-    s.split(p, i);
-    out[ps.at(i[0], i[1], i[2])] = u[p];
-  }
+  RBFIB_HD void at(index_t p, const int i[3]) const { out[ps.at(i[0], i[1], i[2])] = u[p]; }
 };
 
 /// Ghost layer of a wall axis d on one side: u_ghost = ghost * u_adjacent + data * gamma (eq. A.7).
@@ -104,9 +142,7 @@ struct Advection {
   double inv_h[3];
   int a;
   double* out;
-  RBFIB_HD void operator()(index_t p) const {
-    int i[3];
-    s.split(p, i);
+  RBFIB_HD void at(index_t p, const int i[3]) const {
     const PaddedShape& pa = pad[a];
     const double* ua = u[a];
     const index_t c = pa.at(i[0], i[1], i[2]);
@@ -145,9 +181,7 @@ struct Divergence {
   const double* normal_hi[3];
   double inv_h[3];
   double* out;
-  RBFIB_HD void operator()(index_t p) const {
-    int i[3];
-    s.split(p, i);
+  RBFIB_HD void at(index_t p, const int i[3]) const {
     double div = 0.0;
     for (int a = 0; a < s.dims; ++a) {
       const BoxShape& ca = comp[a];
@@ -171,7 +205,16 @@ struct Divergence {
   }
 };
 
-/// Component a of the discrete gradient at its unknowns: (q(x + h/2 e_a) - q(x - h/2 e_a)) / h_a.
+/// Component a of the discrete gradient of the cell-centred q (scalar box sc) at unknown i of u_a:
+/// (q(x + h/2 e_a) - q(x - h/2 e_a)) / h_a; unknown i lies between cells i and i + 1 (wrapping on a
+/// periodic axis).
+RBFIB_HD inline double gradient_at(const BoxShape& sc, int a, double inv_h, const double* q, const int i[3]) {
+  const index_t c = i[0] * sc.stride[0] + i[1] * sc.stride[1] + i[2] * sc.stride[2];
+  const int up = i[a] + 1 == sc.n[a] ? -i[a] : 1;
+  return (q[c + index_t(up) * sc.stride[a]] - q[c]) * inv_h;
+}
+
+/// Component a of the discrete gradient at its unknowns.
 struct Gradient {
   BoxShape s;   ///< box of component a
   BoxShape sc;  ///< scalar box
@@ -179,22 +222,19 @@ struct Gradient {
   double inv_h;
   const double* q;
   double* out;
-  RBFIB_HD void operator()(index_t p) const {
-    int i[3];
-    s.split(p, i);
-    // unknown i of u_a lies between cells i and i + 1 (wrapping on a periodic axis).
-    const index_t c = i[0] * sc.stride[0] + i[1] * sc.stride[1] + i[2] * sc.stride[2];
-    const int up = i[a] + 1 == sc.n[a] ? -i[a] : 1;
-    out[p] = (q[c + index_t(up) * sc.stride[a]] - q[c]) * inv_h;
+  RBFIB_HD void at(index_t p, const int i[3]) const {
+    out[p] = gradient_at(sc, a, inv_h, q, i);
   }
 };
 
-/// gamma[f] += scale * v[p(f)], p(f) the unknown of a component box adjacent to face (d, side).
-struct AddFaceRow {
-  BoxShape s;
-  int d, side;
-  double scale;
-  const double* v;
+/// gamma[f] += (G q)_c at p(f), p(f) the unknown of component c's box s adjacent to face (d, side):
+/// the gradient only where the wall data take it, not over the whole box.
+struct AddFaceGradient {
+  BoxShape s;   ///< box of component c
+  BoxShape sc;  ///< scalar box
+  int c, d, side;
+  double inv_h;  ///< 1 / h_c
+  const double* q;
   double* gamma;
   RBFIB_HD void operator()(index_t f) const {
     int a, b;
@@ -203,7 +243,7 @@ struct AddFaceRow {
     i[a] = int(f % s.n[a]);
     i[b] = int(f / s.n[a]);
     i[d] = side ? s.n[d] - 1 : 0;
-    gamma[f] += scale * v[i[0] * s.stride[0] + i[1] * s.stride[1] + i[2] * s.stride[2]];
+    gamma[f] += gradient_at(sc, c, inv_h, q, i);
   }
 };
 

@@ -66,15 +66,14 @@ void MacOperators::divergence(const VectorField& u, const VelocityBoundaryData* 
   }
   out.resize(scalar_.size());
   k.out = ptr(out);
-  for_each_index(scalar_.size(), k);
+  kernels::for_each_point(scalar_shape_, k);
 }
 
 void MacOperators::gradient(const dvec& q, VectorField& out) const {
   require(index_t(q.size()) == scalar_.size(), "gradient.q.size", q.size(), "does not match the cell-centred box");
   for (int a = 0; a < grid_.dims; ++a) {
     out[a].resize(comp_[a].size());
-    for_each_index(comp_[a].size(),
-                   kernels::Gradient{shape_[a], scalar_shape_, a, 1.0 / grid_.h(a), ptr(q), ptr(out[a])});
+    kernels::for_each_point(shape_[a], kernels::Gradient{shape_[a], scalar_shape_, a, 1.0 / grid_.h(a), ptr(q), ptr(out[a])});
   }
 }
 
@@ -84,7 +83,7 @@ void MacOperators::advection(const VectorField& u, const VelocityBoundaryData& g
   for (int a = 0; a < dims; ++a) {
     dvec& pa = padded_[a];
     pa.resize(pad_[a].size);
-    for_each_index(comp_[a].size(), kernels::PadInterior{shape_[a], pad_[a], ptr(u[a]), ptr(pa)});
+    kernels::for_each_point(shape_[a], kernels::PadInterior{shape_[a], pad_[a], ptr(u[a]), ptr(pa)});
     // walls first (over interior face points), then periodic axes over the whole padded extent.
     for (int d = 0; d < dims; ++d) {
       if (grid_.periodic(d)) continue;
@@ -115,7 +114,7 @@ void MacOperators::advection(const VectorField& u, const VelocityBoundaryData& g
     k.a = a;
     out[a].resize(comp_[a].size());
     k.out = ptr(out[a]);
-    for_each_index(comp_[a].size(), k);
+    kernels::for_each_point(shape_[a], k);
   }
 }
 

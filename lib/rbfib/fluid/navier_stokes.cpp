@@ -193,15 +193,15 @@ void NavierStokesSolver::stage(const dvec& p_in, const dvec& phi_in, VectorField
   ops_.gradient(p_in, gp_);
   // gamma*: the data at t_new, plus the lagged slip G phi on tangential components at no-slip walls.
   VelocityBoundaryData gstar = boundary_data(t_new);
-  ops_.gradient(phi_in, tmp_);
+  require(index_t(phi_in.size()) == ops_.scalar_box().size(), "fluid.state.phi.size", phi_in.size(), "does not match the MAC grid");
   for (int a = 0; a < dims; ++a)
     for (int d = 0; d < dims; ++d) {
       if (d == a || grid_.periodic(d)) continue;
       for (int side = 0; side < 2; ++side) {
         if ((side ? grid_.upper[d] : grid_.lower[d]) != MacBoundary::dirichlet) continue;
         dvec& g = gstar[a].face[d][side];
-        for_each_index(index_t(g.size()), kernels::AddFaceRow{shape_of(ops_.component_box(a)), d, side, 1.0,
-                                                              ptr(tmp_[a]), ptr(g)});
+        for_each_index(index_t(g.size()), kernels::AddFaceGradient{shape_of(ops_.component_box(a)), shape_of(ops_.scalar_box()), a, d,
+                                                                   side, 1.0 / grid_.h(a), ptr(phi_in), ptr(g)});
       }
     }
   const VelocityBoundaryData& gsrc = boundary_data(t_src);
