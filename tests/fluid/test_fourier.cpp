@@ -94,6 +94,43 @@ TEST(Fourier, TransformsInvertAndMatchTheDefinition) {
   }
 }
 
+// The real transform's spectrum is the first n_x / 2 + 1 modes along x of the complex transform of
+// the same data, for odd and even n_x, with y transformed or batched, and backward takes it back.
+TEST(Fourier, RealTransformIsTheHalfSpectrum) {
+  for (int nx : {6, 7})
+    for (std::array<bool, 3> t : {std::array<bool, 3>{true, true, true}, std::array<bool, 3>{true, false, true}}) {
+      const std::array<int, 3> n{nx, 5, 4};
+      linalg::FourierTransform C(n, t);
+      linalg::RealFourierTransform R(n, t);
+      ASSERT_EQ(R.half(), nx / 2 + 1);
+      const index_t size = index_t(nx) * 5 * 4;
+      host_vector<double> h(size);
+      host_vector<linalg::complex> hc(size);
+      for (index_t p = 0; p < size; ++p) h[p] = std::sin(0.3 * p) + 0.1 * std::cos(1.7 * p), hc[p] = linalg::complex(h[p], 0.0);
+      linalg::cvec full = hc, half;
+      C.forward(full);
+      const dvec real = h;
+      R.forward(real, half);
+      const host_vector<linalg::complex> F = full, H = half;
+      ASSERT_EQ(index_t(H.size()), R.spectrum_size());
+      for (int k = 0; k < 4; ++k)
+        for (int j = 0; j < 5; ++j)
+          for (int i = 0; i < R.half(); ++i) {
+            const linalg::complex a = F[i + nx * (j + 5 * k)], b = H[i + R.half() * (j + 5 * k)];
+            EXPECT_NEAR(b.real(), a.real(), 1e-12) << nx << " " << i << " " << j << " " << k;
+            EXPECT_NEAR(b.imag(), a.imag(), 1e-12) << nx << " " << i << " " << j << " " << k;
+          }
+      const host_vector<double> unchanged = real;
+      for (index_t p = 0; p < size; ++p) EXPECT_EQ(unchanged[p], h[p]);  // the input is kept
+      dvec back;
+      R.backward(half, back);
+      const host_vector<double> B = back;
+      for (index_t p = 0; p < size; ++p) EXPECT_NEAR(B[p] / R.scale(), h[p], 1e-13);
+    }
+  EXPECT_THROW(linalg::RealFourierTransform({1, 4, 4}, {true, false, true}), InputError);
+  EXPECT_THROW(linalg::RealFourierTransform({4, 4, 4}, {false, true, true}), InputError);
+}
+
 TEST(Fourier, ChannelPoissonEqualsMultigridPcg) {
   // The pressure box of a channel (cell centres; Neumann walls in y, no correction as eq. 2.9),
   // 3D and 2D: both solve -L q = b with b mean-free and return mean-free q; PCG runs to 1e-13.

@@ -20,10 +20,10 @@ std::array<bool, 3> transformed(const Box& box) {
 }  // namespace
 
 bool FourierSolver::applies(const Box& box) {
-  if (box.dims < 1) return false;
+  if (box.dims < 1 || box.n(0) < 2) return false;
   for (int d = 0; d < box.dims; ++d)
     if (d != 1 && !box.axes[d].periodic()) return false;
-  return linalg::FourierTransform::supported(extents(box), transformed(box));
+  return linalg::RealFourierTransform::supported(extents(box), transformed(box));
 }
 
 FourierSolver::FourierSolver(const Box& box, Correction correction, double alpha, double beta, const std::string& name)
@@ -39,9 +39,9 @@ FourierSolver::FourierSolver(const Box& box, Correction correction, double alpha
   singular_ = alpha == 0 && (!wall_ || neumann_both);
   for (int d = 0; d < 3; ++d)
     mu_[d] = d < box.dims ? kernels::periodic_eigenvalues(s.axis[d], box.n(d)) : host_vector<double>(1, 0.0);
-  fft_ = std::make_unique<linalg::FourierTransform>(extents(box), transformed(box));
-  work_.resize(static_cast<std::size_t>(box.size()));
-  if (wall_) thomas_.resize(static_cast<std::size_t>(box.size()));
+  fft_ = std::make_unique<linalg::RealFourierTransform>(extents(box), transformed(box));
+  work_.resize(static_cast<std::size_t>(fft_->spectrum_size()));
+  if (wall_) thomas_.resize(static_cast<std::size_t>(fft_->spectrum_size()));
 }
 
 void FourierSolver::solve(const dvec& b, dvec& x) const {
@@ -53,19 +53,18 @@ void FourierSolver::solve(const dvec& b, dvec& x) const {
     remove_mean(mean_free_);
     rhs = &mean_free_;
   }
-  thrust::transform(rhs->begin(), rhs->end(), work_.begin(), [] RBFIB_HD (double v) { return linalg::complex(v, 0.0); });
-  fft_->forward(work_);
+  fft_->forward(*rhs, work_);
 
   const kernels::LaplacianStencil s = lap_.stencil();
   const double alpha = alpha_, beta = beta_;
   const bool singular = singular_;
   const double *mux = ptr(mu_[0]), *muy = ptr(mu_[1]), *muz = ptr(mu_[2]);
   linalg::complex* w = thrust::raw_pointer_cast(work_.data());
-  const int nx = s.shape.n[0], ny = s.shape.n[1], nz = s.shape.n[2];
+  const int hx = fft_->half(), ny = s.shape.n[1], nz = s.shape.n[2];  // the spectrum: k_x < hx
   if (!wall_) {
     // Diagonal in (k_x, k_y, k_z); the zero mode of a singular operator is set to zero.
-    for_each_index(n, [=] RBFIB_HD (index_t p) {
-      const index_t i = p % nx, q = p / nx, j = q % ny, k = q / ny;
+    for_each_index(fft_->spectrum_size(), [=] RBFIB_HD (index_t p) {
+      const index_t i = p % hx, q = p / hx, j = q % ny, k = q / ny;
       const double a = alpha + beta * (mux[i] + muy[j] + muz[k]);
       w[p] = (singular && p == 0) ? linalg::complex(0.0, 0.0) : w[p] / a;
     });
@@ -73,16 +72,15 @@ void FourierSolver::solve(const dvec& b, dvec& x) const {
     // One tridiagonal system in y per (k_x, k_z): the Thomas algorithm (wall_modes.hpp).
     const kernels::WallModes modes{s.axis[1], alpha, beta};
     double* cp = ptr(thomas_);
-    for_each_index(index_t(nx) * nz, [=] RBFIB_HD (index_t m) {
-      const index_t i = m % nx, k = m / nx;
-      modes.solve(mux[i] + muz[k], singular && m == 0, w, cp, i + index_t(nx) * ny * k, nx);
+    for_each_index(index_t(hx) * nz, [=] RBFIB_HD (index_t m) {
+      const index_t i = m % hx, k = m / hx;
+      modes.solve(mux[i] + muz[k], singular && m == 0, w, cp, i + index_t(hx) * ny * k, hx);
     });
   }
 
-  fft_->backward(work_);
-  x.resize(static_cast<std::size_t>(n));
+  fft_->backward(work_, x);
   const double inv = 1.0 / fft_->scale();
-  thrust::transform(work_.begin(), work_.end(), x.begin(), [=] RBFIB_HD (const linalg::complex& v) { return v.real() * inv; });
+  thrust::transform(x.begin(), x.end(), x.begin(), [=] RBFIB_HD (double v) { return v * inv; });
   if (singular_) remove_mean(x);
 }
 

@@ -16,8 +16,10 @@
 // w_j the modified-identity weights of the y axis and the ghosts those of eq. A.7: symmetric,
 // solved by the Thomas algorithm (no pivoting: the systems are definite, or semidefinite with the
 // constant null space of the Neumann Poisson problem, removed as below). With y periodic too the
-// operator is diagonal in (k_x, k_y, k_z). Cost: two FFTs of the box and O(n) work: exact to
-// rounding, no iteration.
+// operator is diagonal in (k_x, k_y, k_z). The data are real and each mode's operator has real
+// coefficients, so the modes k_x > n_x / 2 are the conjugates of the others: real transforms keep
+// k_x = 0 .. n_x / 2 only (half the transform and half the tridiagonal systems). Cost: two real
+// FFTs of the box and O(n) work: exact to rounding, no iteration.
 //
 // A singular operator (alpha = 0 with no Dirichlet condition: the pressure Poisson problem) has the
 // constants as null space: b is made mean-free and so is the solution, as PoissonSolver does.
@@ -31,8 +33,8 @@ namespace rbfib {
 
 class FourierSolver {
  public:
-  /// Whether a box is one this solver handles: every axis periodic except possibly y, and the FFT
-  /// backend able to batch it.
+  /// Whether a box is one this solver handles: every axis periodic except possibly y, at least two
+  /// points along x, and the FFT backend able to batch it.
   static bool applies(const Box& box);
 
   /// Throws InputError naming `name` if the box does not apply, or if alpha I~ + beta L is not
@@ -54,7 +56,7 @@ class FourierSolver {
   double alpha_, beta_;
   std::string name_;
   bool wall_ = false, singular_ = false;
-  std::unique_ptr<linalg::FourierTransform> fft_;
+  std::unique_ptr<linalg::RealFourierTransform> fft_;
   std::array<dvec, 3> mu_;  // eigenvalues of the periodic second differences, per mode
   mutable linalg::cvec work_;
   mutable dvec thomas_, mean_free_;

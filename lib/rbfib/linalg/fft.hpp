@@ -46,4 +46,36 @@ class FourierTransform {
   void* backward_ = nullptr;
 };
 
+/// The transform of a real array along the same choice of axes, x among them: the spectrum keeps
+/// the modes k_x = 0 .. n_x / 2 of x (the others are their conjugates), stored x fastest with
+/// h = n_x / 2 + 1 in place of n_x. Half the work and memory of the complex transform; backward
+/// takes a Hermitian spectrum (as an operator with real coefficients per mode leaves one) to a real
+/// array, overwriting the spectrum.
+class RealFourierTransform {
+ public:
+  /// Throws InputError naming the axes when x is not transformed, n_x < 2, or the backend cannot
+  /// batch the choice (as FourierTransform::supported).
+  RealFourierTransform(std::array<int, 3> n, std::array<bool, 3> transform);
+  ~RealFourierTransform();
+  RealFourierTransform(const RealFourierTransform&) = delete;
+  RealFourierTransform& operator=(const RealFourierTransform&) = delete;
+
+  /// spectrum (resized) = the forward transform of real (size()); real is not changed.
+  void forward(const dvec& real, cvec& spectrum) const;
+  /// real (resized) = the backward transform of the spectrum, which is overwritten.
+  void backward(cvec& spectrum, dvec& real) const;
+  index_t size() const { return index_t(n_[0]) * n_[1] * n_[2]; }
+  int half() const { return n_[0] / 2 + 1; }
+  index_t spectrum_size() const { return index_t(half()) * n_[1] * n_[2]; }
+  double scale() const;
+
+  static bool supported(std::array<int, 3> n, std::array<bool, 3> transform);
+
+ private:
+  std::array<int, 3> n_;
+  std::array<bool, 3> transform_;
+  void* forward_ = nullptr;
+  void* backward_ = nullptr;
+};
+
 }  // namespace rbfib::linalg
