@@ -44,6 +44,22 @@ void cufft_check(cufftResult r, const char* what) {
 std::once_flag fftw_threads_once;
 std::mutex fftw_planner;  // FFTW's planner is not thread-safe
 #endif
+
+/// Destroys a transform's two plans (either may be null).
+void destroy_plans(void* forward, void* backward) {
+#if defined(RBFIB_BACKEND_CUDA)
+  for (void* p : {forward, backward})
+    if (p) {
+      cufftDestroy(*static_cast<cufftHandle*>(p));
+      delete static_cast<cufftHandle*>(p);
+    }
+#else
+  std::lock_guard<std::mutex> lock(fftw_planner);
+  for (void* p : {forward, backward})
+    if (p) fftw_destroy_plan(static_cast<fftw_plan>(p));
+#endif
+}
+
 }  // namespace
 
 bool FourierTransform::supported(std::array<int, 3> n, std::array<bool, 3> transform) {
@@ -120,19 +136,7 @@ FourierTransform::FourierTransform(std::array<int, 3> n, std::array<bool, 3> tra
 #endif
 }
 
-FourierTransform::~FourierTransform() {
-#if defined(RBFIB_BACKEND_CUDA)
-  for (void* p : {forward_, backward_})
-    if (p) {
-      cufftDestroy(*static_cast<cufftHandle*>(p));
-      delete static_cast<cufftHandle*>(p);
-    }
-#else
-  std::lock_guard<std::mutex> lock(fftw_planner);
-  for (void* p : {forward_, backward_})
-    if (p) fftw_destroy_plan(static_cast<fftw_plan>(p));
-#endif
-}
+FourierTransform::~FourierTransform() { destroy_plans(forward_, backward_); }
 
 void FourierTransform::execute(cvec& data, int sign) const {
   require(static_cast<index_t>(data.size()) == size(), "FFT data size", data.size(), "must be " + std::to_string(size()));
@@ -212,19 +216,7 @@ RealFourierTransform::RealFourierTransform(std::array<int, 3> n, std::array<bool
 #endif
 }
 
-RealFourierTransform::~RealFourierTransform() {
-#if defined(RBFIB_BACKEND_CUDA)
-  for (void* p : {forward_, backward_})
-    if (p) {
-      cufftDestroy(*static_cast<cufftHandle*>(p));
-      delete static_cast<cufftHandle*>(p);
-    }
-#else
-  std::lock_guard<std::mutex> lock(fftw_planner);
-  for (void* p : {forward_, backward_})
-    if (p) fftw_destroy_plan(static_cast<fftw_plan>(p));
-#endif
-}
+RealFourierTransform::~RealFourierTransform() { destroy_plans(forward_, backward_); }
 
 void RealFourierTransform::forward(const dvec& real, cvec& spectrum) const {
   require(static_cast<index_t>(real.size()) == size(), "FFT data size", real.size(), "must be " + std::to_string(size()));
