@@ -59,13 +59,16 @@ def parse(argv):
 
 
 def git_commit():
+    """The source's commit (short hash, "+changes" when tracked files differ); a copy of the tree
+    without its git history (a build machine's) names it in RBFIB_COMMIT, else "unknown"."""
+    fallback = os.environ.get("RBFIB_COMMIT", "unknown")
     try:
         out = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True, timeout=10)
         dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no"], capture_output=True,
                                text=True, timeout=10)
-        return out.stdout.strip() + ("+changes" if dirty.stdout.strip() else "") if out.returncode == 0 else "unknown"
+        return out.stdout.strip() + ("+changes" if dirty.stdout.strip() else "") if out.returncode == 0 else fallback
     except (OSError, subprocess.SubprocessError):
-        return "unknown"
+        return fallback
 
 
 def cpu_flags():
