@@ -66,6 +66,13 @@ TEST(DistributedFourier, TriplyPeriodicMatchesOneProcess) {
   expect_same_as_one_process(g.component(2), Correction::appendix_a, 1.0, -0.05, "periodic helmholtz uz");
 }
 
+// An odd nx: the real transform keeps k_x = 0..3 of 7, which 3 and 4 ranks share unevenly.
+TEST(DistributedFourier, OddXMatchesOneProcess) {
+  const MacGrid g = make_mac_grid(3, {7, 8, 10}, {0.7, 0.8, 1.0}, {MB::periodic, MB::dirichlet, MB::periodic});
+  expect_same_as_one_process(g.scalar(), Correction::none, 0.0, -1.0, "poisson, nx = 7");
+  expect_same_as_one_process(g.component(0), Correction::appendix_a, 1.0, -0.05, "helmholtz ux, nx = 7");
+}
+
 TEST(DistributedFourier, RefusesWallsAcrossXOrZ) {
   const Comm world;
   const MacGrid g = make_mac_grid(3, {8, 8, 8}, {1, 1, 1}, {MB::dirichlet, MB::periodic, MB::periodic});

@@ -35,9 +35,11 @@ FourierSolver::FourierSolver(const Slabs& slabs, Correction correction, double a
   muy_ = kernels::periodic_eigenvalues(s.axis[1], ny);
   muz_ = kernels::periodic_eigenvalues(s.axis[2], nz);
 
-  const ptrdiff_t n[2] = {nz, nx};
+  // Real transforms over (z, x): x keeps its modes k_x = 0..nx/2 (the rest are their conjugates),
+  // as the one-process solver does; FFTW's local sizes take those complex dimensions.
+  const ptrdiff_t n[2] = {nz, nx}, spectrum[2] = {nz, nx / 2 + 1};
   ptrdiff_t local_n0 = 0, local_0_start = 0, local_n1 = 0, local_1_start = 0;
-  alloc_ = fftw_mpi_local_size_many_transposed(2, n, ny, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, slabs.comm().get(),
+  alloc_ = fftw_mpi_local_size_many_transposed(2, spectrum, ny, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, slabs.comm().get(),
                                                &local_n0, &local_0_start, &local_n1, &local_1_start);
   // Agreed by all ranks (a rank that threw alone would leave the others in the plan's collectives);
   // an empty slab's start is any.
@@ -50,13 +52,15 @@ FourierSolver::FourierSolver(const Slabs& slabs, Correction correction, double a
   alloc_ = std::max<index_t>(alloc_, 1);
   auto* work = fftw_alloc_complex(static_cast<std::size_t>(alloc_));
   work_ = work;
-  // FFTW_ESTIMATE: the same plan every run, as bitwise restarts need (linalg/fft.cpp).
+  // FFTW_ESTIMATE: the same plan every run, as bitwise restarts need (linalg/fft.cpp). In place:
+  // the real planes are padded to 2 (nx/2 + 1) values along x.
   fftw_plan_with_nthreads(omp_get_max_threads());
   MPI_Comm comm = slabs.comm().get();
-  forward_ = fftw_mpi_plan_many_dft(2, n, ny, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, work, work, comm, FFTW_FORWARD,
-                                    FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_OUT);
-  backward_ = fftw_mpi_plan_many_dft(2, n, ny, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, work, work, comm, FFTW_BACKWARD,
-                                     FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_IN);
+  double* real = reinterpret_cast<double*>(work);
+  forward_ = fftw_mpi_plan_many_dft_r2c(2, n, ny, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, real, work, comm,
+                                        FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_OUT);
+  backward_ = fftw_mpi_plan_many_dft_c2r(2, n, ny, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, work, real, comm,
+                                         FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_IN);
   if (!forward_ || !backward_) throw NumericalError(Cause::solver, name + ": FFTW could not plan the distributed transform");
   if (!wall_ && modes_ > 0) {
     // Along y, contiguous, one transform per (k_x, k_z) this rank holds.
@@ -77,8 +81,10 @@ FourierSolver::~FourierSolver() {
 void FourierSolver::count_transposes() const {
   const int P = slabs_.comm().size();
   if (P == 1) return;
-  // Each transposed transform sends the rank's complex data but the part it keeps: (P - 1) / P.
-  const double local = double(slabs_.local_size()) * 2 * sizeof(double);
+  // Each transposed transform sends the rank's half spectrum (planes x (nx/2 + 1) x ny complex
+  // values) but the part it keeps: (P - 1) / P.
+  const Box& box = slabs_.box();
+  const double local = double(slabs_.planes()) * double(box.n(0) / 2 + 1) * box.n(1) * 2 * sizeof(double);
   traffic().transforms += 2;
   traffic().transposes += 2 * local * double(P - 1) / double(P);
 }
@@ -91,12 +97,14 @@ void FourierSolver::solve(const dvec& b, dvec& x) const {
   const int nx = box.n(0), ny = box.n(1), nz = box.n(2);
   const double mean = singular_ ? global_mean(slabs_, b) : 0.0;
 
-  // (z, y, x) -> (z, x, y): y fastest, as the batched transform wants.
+  // (z, y, x) -> (z, x, y): y fastest, as the batched transform wants, x padded to 2 (nx/2 + 1).
   auto* w = reinterpret_cast<linalg::complex*>(work_);
+  double* r = reinterpret_cast<double*>(work_);
+  const index_t padded = 2 * (nx / 2 + 1);
   const double* in = ptr(b);
   for_each_index(local, [=] RBFIB_HD (index_t p) {
     const index_t i = p % nx, q = p / nx, j = q % ny, k = q / ny;
-    w[(k * nx + i) * ny + j] = linalg::complex(in[p] - mean, 0.0);
+    r[(k * padded + i) * ny + j] = in[p] - mean;
   });
   fftw_execute(static_cast<fftw_plan>(forward_));
   count_transposes();  // this one and the backward transform's
@@ -129,7 +137,7 @@ void FourierSolver::solve(const dvec& b, dvec& x) const {
   double* out = ptr(x);
   for_each_index(local, [=] RBFIB_HD (index_t p) {
     const index_t i = p % nx, q = p / nx, j = q % ny, k = q / ny;
-    out[p] = w[(k * nx + i) * ny + j].real() * inv;
+    out[p] = r[(k * padded + i) * ny + j] * inv;
   });
   if (singular_) {
     const double m = global_mean(slabs_, x);

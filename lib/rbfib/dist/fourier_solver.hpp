@@ -4,12 +4,12 @@
 // of ranks.
 //
 // A rank holds its planes z in [z0, z0 + n) of b, x fastest. It reorders them to (z, x, y), y
-// fastest, and FFTW's distributed 2D transform over (z, x), batched over y, returns them
-// transposed: the rank then holds the modes k_x in [x0, x0 + m) for every k_z, each mode's y-line
-// contiguous. Walls in y: each line is the tridiagonal system of fluid/wall_modes.hpp, solved
+// fastest, and FFTW's distributed 2D real transform over (z, x), batched over y, returns them
+// transposed: the rank then holds the modes k_x in [x0, x0 + m) of 0..nx/2 (the others are their
+// conjugates) for every k_z, each mode's y-line contiguous. Walls in y: each line is the tridiagonal system of fluid/wall_modes.hpp, solved
 // where it lies. y periodic: a local transform along y, then a diagonal. The backward transform
 // takes the transposed modes back to the slabs. Communication: the two all-to-all transposes of
-// FFTW (each rank sends about (P - 1) / P of its slab per transform).
+// FFTW (each rank sends about (P - 1) / P of its slab's half spectrum per transform).
 #include "rbfib/dist/slabs.hpp"
 #include "rbfib/fluid/laplacian.hpp"
 
@@ -44,7 +44,7 @@ class FourierSolver {
   bool wall_ = false, singular_ = false;
   index_t modes_ = 0, first_mode_ = 0, alloc_ = 0;
   host_vector<double> mux_, muy_, muz_;
-  void* work_ = nullptr;  // fftw_complex[alloc_]
+  void* work_ = nullptr;  // fftw_complex[alloc_], in place of the padded real planes
   void* forward_ = nullptr;
   void* backward_ = nullptr;
   void* forward_y_ = nullptr;  // y periodic: the local transforms along y
