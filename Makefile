@@ -19,7 +19,7 @@ DEBS += libthrust-dev libcub-dev
 endif
 NVCC := $(firstword $(wildcard /usr/local/cuda/bin/nvcc) $(shell command -v nvcc 2>/dev/null))
 
-.PHONY: help deps configure build test test-unit check-cuda build-cuda gpu-check reproduce reproduce-% keep-% point-sets clean
+.PHONY: help deps configure build test test-unit check-cuda build-cuda gpu-check gpu-bundle reproduce reproduce-% keep-% point-sets clean
 
 help:
 	@echo "make reproduce          every implemented study at SCALE=$(SCALE) -> reports/"
@@ -28,6 +28,7 @@ help:
 	@echo "make test               install deps, build, run every test (unit, harness, studies at quick scale)"
 	@echo "make build-cuda         configure and build the CUDA backend (nvcc)"
 	@echo "make gpu-check          on a machine with an NVIDIA GPU: CUDA build, unit tests on the device, GPU benchmarks -> reports/gpu"
+	@echo "make gpu-bundle         the CUDA build's tests and GPU-check drivers with their libraries, for a GPU node without the build's dependencies"
 	@echo "make deps               install missing Debian packages"
 	@echo "make point-sets         regenerate reference/point_sets (maximal-determinant-like sites; ~1 h on 2 cores)"
 
@@ -76,6 +77,10 @@ gpu-check: deps
 	@failed=""; for s in bench_ib bench_cells bench_fluid chapter4_cells; do \
 	  $(PY) -m harness run $$s --build $(BUILD_CUDA) --reports reports/gpu --out runs/gpu || failed="$$failed $$s"; done; \
 	if [ -n "$$failed" ]; then echo "gpu-check: failed checks in:$$failed (reports/gpu)"; exit 1; fi
+
+# For a GPU node without the build's dependencies: tools/gpu_check_bundle.sh runs the same check there.
+gpu-bundle: build-cuda
+	tools/gpu_bundle.sh $(BUILD_CUDA)
 
 test: build check-cuda
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
