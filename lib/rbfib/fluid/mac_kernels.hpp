@@ -85,7 +85,6 @@ RBFIB_HD inline void other_axes(int d, int& a, int& b) {
 
 /// padded[interior] = u
 struct PadInterior {
-  BoxShape s;
   PaddedShape ps;
   const double* u;
   double* out;
@@ -216,7 +215,6 @@ RBFIB_HD inline double gradient_at(const BoxShape& sc, int a, double inv_h, cons
 
 /// Component a of the discrete gradient at its unknowns.
 struct Gradient {
-  BoxShape s;   ///< box of component a
   BoxShape sc;  ///< scalar box
   int a;
   double inv_h;

@@ -73,7 +73,7 @@ void MacOperators::gradient(const dvec& q, VectorField& out) const {
   require(index_t(q.size()) == scalar_.size(), "gradient.q.size", q.size(), "does not match the cell-centred box");
   for (int a = 0; a < grid_.dims; ++a) {
     out[a].resize(comp_[a].size());
-    kernels::for_each_point(shape_[a], kernels::Gradient{shape_[a], scalar_shape_, a, 1.0 / grid_.h(a), ptr(q), ptr(out[a])});
+    kernels::for_each_point(shape_[a], kernels::Gradient{scalar_shape_, a, 1.0 / grid_.h(a), ptr(q), ptr(out[a])});
   }
 }
 
@@ -83,7 +83,7 @@ void MacOperators::advection(const VectorField& u, const VelocityBoundaryData& g
   for (int a = 0; a < dims; ++a) {
     dvec& pa = padded_[a];
     pa.resize(pad_[a].size);
-    kernels::for_each_point(shape_[a], kernels::PadInterior{shape_[a], pad_[a], ptr(u[a]), ptr(pa)});
+    kernels::for_each_point(shape_[a], kernels::PadInterior{pad_[a], ptr(u[a]), ptr(pa)});
     // walls first (over interior face points), then periodic axes over the whole padded extent.
     for (int d = 0; d < dims; ++d) {
       if (grid_.periodic(d)) continue;
