@@ -174,9 +174,14 @@ int main(int argc, char** argv) {
     const Setup s = full ? Setup{0.2 * um, true, 16000, 1600, 50 * ns, 200 * us, 7.2 * units::ms}
                          : Setup{0.4 * um, false, 4096, 400, 50 * ns, 40 * us, 20 * us};
     const scene::Scene base = scene::load_scene(st::source_path(opt, "scenes/whole_blood_bumpy.yaml"));
+    // The top wall's speed, from the scene: the slip is reported as a fraction of it.
+    const scene::WallMotion& top = base.walls[1][1];
+    const double top_speed = top.turning ? top.speed : std::hypot(top.velocity[0], top.velocity[1], top.velocity[2]);
+    require(top_speed > 0, "chapter5_wall_ab: the scene's top wall speed", top_speed, "must be > 0 (the slip is a fraction of it)");
     Json results = st::make_results(opt);
     Json& P = results["parameters"];
-    P["scene"] = "scenes/whole_blood_bumpy.yaml: 16 x 12 x 16 um, 8 red cells, 2 platelets, the top wall at 16 mm/s turning from z toward x by 45 deg";
+    P["scene"] = "scenes/whole_blood_bumpy.yaml: 16 x 12 x 16 um, 8 red cells, 2 platelets, the top wall at " +
+                 to_text(top_speed / units::mm) + " mm/s turning from z toward x by 45 deg";
     P["h_um"] = s.h / um;
     P["sites"] = s.seed_sites ? "the seed's: red cell 2,500 / 10,000, platelet 900 / 900" : "the scene's: red cell 400 / 1,600, platelet 400 / 400";
     P["endothelium_points"] = double(s.points);
@@ -231,7 +236,7 @@ int main(int argc, char** argv) {
       V["platelet_shift_um" + key] = shift / um;
       V["platelet_shift_over_h" + key] = shift / s.h;
       V["red_cell_shift_over_h" + key] = red / s.h;
-      V["slip_over_top_wall_speed" + key] = e.slip_end / (16 * units::mm);
+      V["slip_over_top_wall_speed" + key] = e.slip_end / top_speed;
       V["platelet_turn_deg" + key] = turn;
       V["red_cell_shift_um" + key] = red / um;
       V["slip_rms_end_um_s" + key] = e.slip_end / um;
@@ -241,7 +246,7 @@ int main(int argc, char** argv) {
                        " um and " + to_text(turn) + " deg from the seed's, red cells " + to_text(red / um) + " um");
     }
     V["h_um"] = s.h / um;
-    V["top_wall_speed_um_s"] = 16 * units::mm / um;
+    V["top_wall_speed_um_s"] = top_speed / um;
     results["tables"]["wall_ab"] = ab;
     st::write_results(opt, results);
     return 0;
