@@ -12,9 +12,11 @@
 namespace rbfib::dist {
 
 namespace {
-/// Sum over this rank's entries, then over all ranks: the mean of a field over the whole box.
-double global_mean(const Slabs& slabs, const dvec& v) {
-  return slabs.comm().sum(thrust::reduce(v.begin(), v.end(), 0.0)) / double(slabs.box().size());
+/// Sum over this rank's entries (from `offset` on), then over all ranks: the mean of a field over
+/// the whole box.
+double global_mean(const Slabs& slabs, const dvec& v, index_t offset) {
+  const auto first = v.begin() + offset;
+  return slabs.comm().sum(thrust::reduce(first, first + slabs.local_size(), 0.0)) / double(slabs.box().size());
 }
 }  // namespace
 
@@ -93,15 +95,25 @@ void FourierSolver::solve(const dvec& b, dvec& x) const {
   const index_t local = slabs_.local_size();
   require(static_cast<index_t>(b.size()) == local, name_ + ": right-hand side size", b.size(),
           "must be this rank's slab, " + to_text(local));
+  x.resize(static_cast<std::size_t>(local));
+  solve(b, 0, x, 0);
+}
+
+void FourierSolver::solve(const dvec& b, index_t b_offset, dvec& x, index_t x_offset) const {
+  const index_t local = slabs_.local_size();
+  require(b_offset >= 0 && b_offset + local <= static_cast<index_t>(b.size()), name_ + ": right-hand side size", b.size(),
+          "must hold this rank's slab, " + to_text(local) + " values, from " + to_text(b_offset));
+  require(x_offset >= 0 && x_offset + local <= static_cast<index_t>(x.size()), name_ + ": solution size", x.size(),
+          "must hold this rank's slab, " + to_text(local) + " values, from " + to_text(x_offset));
   const Box& box = slabs_.box();
   const int nx = box.n(0), ny = box.n(1), nz = box.n(2);
-  const double mean = singular_ ? global_mean(slabs_, b) : 0.0;
+  const double mean = singular_ ? global_mean(slabs_, b, b_offset) : 0.0;
 
   // (z, y, x) -> (z, x, y): y fastest, as the batched transform wants, x padded to 2 (nx/2 + 1).
   auto* w = reinterpret_cast<linalg::complex*>(work_);
   double* r = reinterpret_cast<double*>(work_);
   const index_t padded = 2 * (nx / 2 + 1);
-  const double* in = ptr(b);
+  const double* in = ptr(b) + b_offset;
   for_each_index(local, [=] RBFIB_HD (index_t p) {
     const index_t i = p % nx, q = p / nx, j = q % ny, k = q / ny;
     r[(k * padded + i) * ny + j] = in[p] - mean;
@@ -133,14 +145,13 @@ void FourierSolver::solve(const dvec& b, dvec& x) const {
   if (backward_y_) fftw_execute(static_cast<fftw_plan>(backward_y_));
   fftw_execute(static_cast<fftw_plan>(backward_));
   const double inv = 1.0 / (double(nx) * nz * (wall_ ? 1 : ny));
-  x.resize(static_cast<std::size_t>(local));
-  double* out = ptr(x);
+  double* out = ptr(x) + x_offset;
   for_each_index(local, [=] RBFIB_HD (index_t p) {
     const index_t i = p % nx, q = p / nx, j = q % ny, k = q / ny;
     out[p] = r[(k * padded + i) * ny + j] * inv;
   });
   if (singular_) {
-    const double m = global_mean(slabs_, x);
+    const double m = global_mean(slabs_, x, x_offset);
     for_each_index(local, [=] RBFIB_HD (index_t p) { out[p] -= m; });
   }
 }

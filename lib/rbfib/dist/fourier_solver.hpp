@@ -29,6 +29,9 @@ class FourierSolver {
   /// x = (alpha I~ + beta L)^{-1} b on this rank's slab (collective). For a singular operator, b's
   /// mean over the whole box is removed first and x is returned mean-free.
   void solve(const dvec& b, dvec& x) const;
+  /// The same on the slab's entries of b and x from b_offset and x_offset on (an extended slab's
+  /// owned planes, say): no copies in and out. b and x may be the same vector.
+  void solve(const dvec& b, index_t b_offset, dvec& x, index_t x_offset) const;
 
   bool singular() const { return singular_; }
   /// Modes k_x this rank solves after the transpose: [first_mode(), first_mode() + modes()).

@@ -70,7 +70,6 @@ namespace {
 struct SlabSolve {
   Slabs slabs;
   FourierSolver solver;
-  mutable dvec owned_b, owned_x;
   SlabSolve(const Box& box, const Comm& comm, Correction c, double alpha, double beta, const std::string& name)
       : slabs(box, comm, name), solver(slabs, c, alpha, beta, name) {}
 };
@@ -82,14 +81,11 @@ DirectSolve SlabFluid::fourier(const Box& local_box, Correction correction, doub
   const index_t ps = s->slabs.plane_size(), offset = ghosts_ * ps, owned = s->slabs.local_size();
   const index_t extended = owned + 2 * offset;
   const Halo* halo = halo_.get();
-  return [s, offset, owned, extended, halo, name](const dvec& b, dvec& x) {
+  return [s, offset, extended, halo, name](const dvec& b, dvec& x) {
     require(static_cast<index_t>(b.size()) == extended, name + ": right-hand side size", b.size(),
             "must be this rank's extended slab, " + to_text(extended));
-    s->owned_b.resize(static_cast<std::size_t>(owned));
-    thrust::copy(b.begin() + offset, b.begin() + offset + owned, s->owned_b.begin());
-    s->solver.solve(s->owned_b, s->owned_x);
-    x.resize(static_cast<std::size_t>(extended));
-    thrust::copy(s->owned_x.begin(), s->owned_x.end(), x.begin() + offset);
+    x.resize(static_cast<std::size_t>(extended));  // b's size: b may be x
+    s->solver.solve(b, offset, x, offset);
     halo->fill(x);
   };
 }
