@@ -208,9 +208,11 @@ def evaluate(reference, results):
       NaN or infinite: a value never measured never passes, with or without a known difference);
     - DIFFERS: a check that was evaluated and failed, whose reference carries `known_difference`
       (the investigated reason our number differs from the paper's); it does not fail the run;
-    - NOT RUN: a check with `scales: [...]` at another scale, or with `run: <id>` (or a list) while
-      a run it measures is unfinished or unrecorded in the results' `runs`; the detail says how far
-      the run is and the hours to go. Counted apart from passes and failures.
+    - OTHER SCALE: a check with `scales: [...]` that do not include the results' scale: it belongs
+      to the other scale's report (e.g. a band stated for the quick window), not to this one;
+    - NOT RUN: a check with `run: <id>` (or a list) while a run it measures is unfinished or
+      unrecorded in the results' `runs`; the detail says how far the run is and the hours to go.
+      Both are counted apart from passes and failures.
     `speed` marks checks that measure speed (`speed: true` in the reference): reported as any other
     check, but a gate for correctness only (`--gate correctness`) does not fail on them.
     """
@@ -219,7 +221,7 @@ def evaluate(reference, results):
     for c in reference["checks"]:
         scales = c.get("scales")
         if scales is not None and results.get("scale") not in scales:
-            out.append(_outcome(c, "NOT RUN", True, f"evaluated at {', '.join(scales)} scale only"))
+            out.append(_outcome(c, "OTHER SCALE", True, f"evaluated at {', '.join(scales)} scale only"))
             continue
         waiting = unfinished_runs(results, c)
         if waiting:

@@ -120,6 +120,10 @@ def render(meta, ref, results, outcome, out_dir, run_info):
     failed = sum(c["status"] == "FAIL" for c in outcome)
     differs = sum(c["status"] == "DIFFERS" for c in outcome)
     not_run = sum(c["status"] == "NOT RUN" for c in outcome)
+    # Checks of the other scale belong to its report: named under the table, not counted here.
+    other_scale = [c for c in outcome if c["status"] == "OTHER SCALE"]
+    other = "full" if results.get("scale") == "quick" else "quick"
+    outcome = [c for c in outcome if c["status"] != "OTHER SCALE"]
     L = [f"# {ref.get('title', meta['title'])}", ""]
     L.append(f"Study `{meta['name']}` ({meta['chapter']}): reproduces {', '.join(meta['reproduces'])}. "
              f"Source: {ref['source']}.")
@@ -128,7 +132,9 @@ def render(meta, ref, results, outcome, out_dir, run_info):
     L.append("")
     L.append(f"**Scale: {results.get('scale', '?')}.** Checks: **{passed} passed, {failed} failed**"
              + (f", {differs} known difference{'s' if differs > 1 else ''} from the paper (see below)" if differs else "")
-             + (f", {not_run} not run (each line says why: another scale, or a run not finished)." if not_run else "."))
+             + (f", {not_run} not run (each line says which run has not finished)." if not_run else ".")
+             + (f" {len(other_scale)} more {'checks belong' if len(other_scale) > 1 else 'check belongs'} to the {other} scale's report."
+                if other_scale else ""))
     L.append("")
     L.append(f"Ran on {prov.get('cpu', '?')} ({prov.get('threads', '?')} threads of {prov.get('hardware_threads', '?')})"
              + (f" with the GPU {prov['gpu']}" if prov.get('gpu') else "") + ", "
@@ -149,6 +155,9 @@ def render(meta, ref, results, outcome, out_dir, run_info):
                                           [[c["id"] + (" (speed)" if c.get("speed") else ""), c["source"],
                                             c["status"] if c["passed"] else f"**{c['status']}**",
                                             c["detail"]] for c in outcome]), ""]
+    if other_scale:
+        L += [f"Checks of the {other} scale, evaluated in [its report](../{meta['name'] + ('' if other == 'quick' else '-' + other)}/README.md) "
+              f"and not here: " + ", ".join(f"`{c['id']}`" for c in other_scale) + ".", ""]
     if any(c.get("speed") for c in outcome):
         L += ["Checks marked (speed) measure speed: they count here and in `make reproduce`, but `make test` "
               "prints them without failing on them (timings move with the machine's load).", ""]

@@ -59,7 +59,7 @@ class Checks(unittest.TestCase):
     def test_check_limited_to_a_scale(self):
         c = {"id": "b", "source": "s", "kind": "bound", "value": "speed", "max": 2.9, "scales": ["full"]}
         quick = checks.evaluate({"checks": [c]}, dict(RESULTS, scale="quick"))[0]
-        self.assertEqual(quick["status"], "NOT RUN")
+        self.assertEqual(quick["status"], "OTHER SCALE")  # belongs to the full report, not a run unfinished
         full = checks.evaluate({"checks": [c]}, dict(RESULTS, scale="full"))[0]
         self.assertEqual(full["status"], "FAIL")
 
@@ -197,6 +197,25 @@ class BadInput(unittest.TestCase):
             json.dump({"study": "fake", "scale": "quick", "values": values,
                        "tables": {"t": {"columns": ["s", "e"], "units": ["s", ""], "rows": [[1.0, 0.1], [2.0, 0.05]]}}}, f)
         return ["run", "fake", "--no-run", "--out", os.path.join(tmp, "runs"), "--reports", os.path.join(tmp, "reports")]
+
+    def test_checks_of_the_other_scale_are_named_not_counted(self):
+        tmp = tempfile.mkdtemp()
+        try:
+            full_only = "  - {id: long_one, kind: bound, source: y, value: v, max: 1, scales: [full]}\n"
+            here = "  - {id: here, kind: bound, source: y, value: w, max: 1}\n"
+            proc = harness(*self.fake_study(tmp, full_only + here, {"w": 0.5}), root=tmp)
+            self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
+            with open(os.path.join(tmp, "reports", "fake", "README.md")) as f:
+                text = f.read()
+            self.assertIn("Checks: **1 passed, 0 failed**. 1 more check belongs to the full scale's report.", text)
+            self.assertNotIn("NOT RUN", text)
+            self.assertNotIn("| long_one", text)  # not a row of the checks table
+            self.assertIn("evaluated in [its report](../fake-full/README.md) and not here: `long_one`.", text)
+            with open(os.path.join(tmp, "reports", "fake", "summary.json")) as f:
+                summary = json.load(f)
+            self.assertEqual((summary["passed"], summary["not_run"]), (1, 0))
+        finally:
+            shutil.rmtree(tmp)
 
     def test_speed_checks_do_not_gate_the_tests(self):
         tmp = tempfile.mkdtemp()
