@@ -26,6 +26,7 @@ class SlabFluid : public FluidDecomposition {
   /// (too many ranks for n_z).
   SlabFluid(const MacGrid& grid, const Comm& comm, int ghosts = fluid_reach);
 
+  const MacGrid& whole_grid() const override { return grid_; }
   const MacGrid& local_grid() const override { return local_; }
   const MacGrid& lagrangian_grid() const override { return wide_; }
   void widen(const dvec& local, dvec& wide) const override;
@@ -49,7 +50,6 @@ class SlabFluid : public FluidDecomposition {
     return comm_.exchange(to);
   }
 
-  const MacGrid& grid() const { return grid_; }
   const Comm& comm() const { return comm_; }
   const Slabs& slabs() const { return slabs_; }
   int ghosts() const { return wide_ghosts_; }  ///< the Lagrangian halo (planes a side)

@@ -11,7 +11,7 @@ std::array<Box, 3> component_boxes(const MacGrid& g) { return {g.component(0), g
 
 SlabInteraction::SlabInteraction(const SlabFluid& fluid, ib::Kernel kernel)
     : fluid_(fluid), ib_(component_boxes(fluid.lagrangian_grid()), kernel) {
-  ib_.set_window(2, fluid.grid().cells[2]);
+  ib_.set_window(2, fluid.whole_grid().cells[2]);
 }
 
 int SlabInteraction::ghosts_needed(double beyond, double h, ib::Kernel kernel) {

@@ -27,6 +27,8 @@ class FluidDecomposition {
  public:
   virtual ~FluidDecomposition() = default;
 
+  /// The whole grid, of which every process steps a part.
+  virtual const MacGrid& whole_grid() const = 0;
   /// The grid this process steps: its part with the ghost planes.
   virtual const MacGrid& local_grid() const = 0;
   /// Fills the ghost planes of a field of the local grid (any of its boxes) from their owners.

@@ -9,13 +9,21 @@
 
 namespace rbfib::sim {
 
-HeldWallSet::HeldWallSet(HeldWall wall) : wall_(std::move(wall)) {
+HeldWallSet::HeldWallSet(HeldWall wall, const FluidDecomposition* parts) : wall_(std::move(wall)), parts_(parts) {
   const std::string field = name();
   require(wall_.X.size() % 3 == 0 && !wall_.X.empty(), field + ": marker positions size", wall_.X.size(), "must be a positive multiple of 3");
   require(blas::all_finite(wall_.X), field + ": marker positions", "NaN or Inf", "must be finite");
+  const std::vector<double> X(wall_.X.begin(), wall_.X.end());
+  const std::size_t n = X.size() / 3;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!parts_ || parts_->owner(X[std::size_t(parts_->split_axis()) * n + k]) == parts_->process()) mine_.push_back(index_t(k));
+  std::vector<double> mine(3 * mine_.size());
+  for (std::size_t d = 0; d < 3; ++d)
+    for (std::size_t q = 0; q < mine_.size(); ++q) mine[d * mine_.size() + q] = X[d * n + std::size_t(mine_[q])];
+  X_mine_ = dvec(mine.begin(), mine.end());
 }
 
-void HeldWallSet::locate(ib::Interaction& ib) { ib.sort(ptr(wall_.X), index_t(wall_.X.size()) / 3, at_); }
+void HeldWallSet::locate(ib::Interaction& ib) { ib.sort(ptr(X_mine_), index_t(mine_.size()), at_); }
 
 void HeldWallSet::interpolate_end(ib::Interaction& ib, const VectorField& u, bool) { interpolate_at(ib, at_, u, U_, name()); }
 
@@ -26,15 +34,6 @@ namespace {
 double trial_force(const FluidStep& fluid) {
   const MacGrid& grid = fluid.grid();
   return fluid.viscosity() * std::min({grid.h(0), grid.h(1), grid.h(2)}) * 1e3;
-}
-
-/// The base of the mobility's columns: the velocity at the markers after the step without force,
-/// from the current state (the fluid step is affine in its force).
-dvec base_velocity(ib::Interaction& ib, FluidStep& fluid, const ib::SortedPoints& at, const std::string& name) {
-  fluid.step(nullptr);
-  dvec U0;
-  interpolate_at(ib, at, fluid.next().u, U0, name);
-  return U0;
 }
 
 VectorField zeros_like(const VectorField& shape) {
@@ -49,14 +48,54 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
+dvec HeldWallSet::velocity_at_markers(ib::Interaction& ib, const VectorField& u) {
+  dvec U;
+  if (!parts_) {
+    interpolate_at(ib, at_, u, U, name());
+    return U;
+  }
+  for (int a = 0; a < 3; ++a) parts_->widen(u[a], wide_[a]);
+  agreed(parts_, [&] { interpolate_at(ib, at_, wide_, U, name()); });
+  // Every process sends each of its markers' index and velocity to every process.
+  const std::vector<double> Um(U.begin(), U.end());
+  const std::size_t m = mine_.size(), n = wall_.X.size() / 3;
+  std::vector<double> message;
+  message.reserve(4 * m);
+  for (std::size_t q = 0; q < m; ++q) {
+    message.push_back(double(mine_[q]));
+    for (std::size_t d = 0; d < 3; ++d) message.push_back(Um[d * m + q]);
+  }
+  std::vector<double> whole(3 * n, NAN);
+  for (const std::vector<double>& from : parts_->exchange(std::vector<std::vector<double>>(std::size_t(parts_->processes()), message)))
+    for (std::size_t i = 0; i + 3 < from.size(); i += 4)
+      for (std::size_t d = 0; d < 3; ++d) whole[d * n + std::size_t(from[i])] = from[i + 1 + d];
+  return dvec(whole.begin(), whole.end());
+}
+
+void HeldWallSet::spread_forces(ib::Interaction& ib, ib::Spreading algorithm, const dvec& F, VectorField& f, VectorField& scratch) {
+  if (!parts_) return spread_into(ib, algorithm, wall_.X, F, spread_, f, scratch);
+  const std::vector<double> all(F.begin(), F.end());
+  const std::size_t m = mine_.size(), n = all.size() / 3;
+  std::vector<double> mine(3 * m);
+  for (std::size_t d = 0; d < 3; ++d)
+    for (std::size_t q = 0; q < m; ++q) mine[d * m + q] = all[d * n + std::size_t(mine_[q])];
+  const MacGrid& g = parts_->lagrangian_grid();
+  for (int a = 0; a < 3; ++a) wide_[a].assign(static_cast<std::size_t>(g.component(a).size()), 0.0);
+  agreed(parts_, [&] { spread_into(ib, algorithm, X_mine_, dvec(mine.begin(), mine.end()), spread_, wide_, scratch); });
+  for (int a = 0; a < 3; ++a) {
+    parts_->narrow_sum(wide_[a], narrow_[a]);
+    blas::axpy(1.0, narrow_[a], f[a]);
+  }
+}
+
 dvec HeldWallSet::response(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algorithm, index_t column, double trial, const dvec& U0,
                            VectorField& g, VectorField& scratch) {
-  dvec F(wall_.X.size(), 0.0), U;
+  dvec F(wall_.X.size(), 0.0);
   F[static_cast<std::size_t>(column)] = trial;
   for (int a = 0; a < 3; ++a) thrust::fill(g[a].begin(), g[a].end(), 0.0);
-  spread_into(ib, algorithm, wall_.X, F, spread_, g, scratch);
+  spread_forces(ib, algorithm, F, g, scratch);
   fluid.step(&g);
-  interpolate_at(ib, at_, fluid.next().u, U, name());
+  dvec U = velocity_at_markers(ib, fluid.next().u);
   blas::axpy(-1.0, U0, U);
   blas::scale(1 / trial, U);
   return U;
@@ -67,7 +106,8 @@ linalg::LuFactors HeldWallSet::build(ib::Interaction& ib, FluidStep& fluid, ib::
   const auto t0 = std::chrono::steady_clock::now();
   const index_t m = index_t(wall_.X.size());  // 3n unknowns
   VectorField g = zeros_like(shape);
-  const dvec U0 = base_velocity(ib, fluid, at_, name());
+  fluid.step(nullptr);  // the base of the columns: the step without force (affine in its force)
+  const dvec U0 = velocity_at_markers(ib, fluid.next().u);
   const double trial = trial_force(fluid);
   std::vector<double> M(static_cast<std::size_t>(m * m));
   for (index_t j = 0; j < m; ++j) {
@@ -84,7 +124,8 @@ CirculantMobility HeldWallSet::build_circulant(ib::Interaction& ib, FluidStep& f
   const auto t0 = std::chrono::steady_clock::now();
   const index_t n = index_t(wall_.X.size()) / 3;
   VectorField g = zeros_like(shape);
-  const dvec U0 = base_velocity(ib, fluid, at_, name());
+  fluid.step(nullptr);  // the base of the columns: the step without force (affine in its force)
+  const dvec U0 = velocity_at_markers(ib, fluid.next().u);
   const double trial = trial_force(fluid);
   std::array<std::vector<double>, 3> columns;
   const index_t origin = lattice_->marker[0];  // the lattice point (0, 0)
@@ -99,7 +140,8 @@ CirculantMobility HeldWallSet::build_circulant(ib::Interaction& ib, FluidStep& f
 
 void HeldWallSet::hold(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algorithm, VectorField& f, VectorField& scratch) {
   if (!lattice_known_) {
-    if (!wall_.dense) lattice_ = commensurate_lattice(std::vector<double>(wall_.X.begin(), wall_.X.end()), fluid.grid());
+    if (!wall_.dense)
+      lattice_ = commensurate_lattice(std::vector<double>(wall_.X.begin(), wall_.X.end()), parts_ ? parts_->whole_grid() : fluid.grid());
     lattice_known_ = true;
   }
   const double dt = fluid.dt();
@@ -111,8 +153,8 @@ void HeldWallSet::hold(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algo
       mobility_.emplace(dt, build(ib, fluid, algorithm, f, scratch));
     fluid.step(&f);  // u* again, after the trial steps
   }
-  // M Lambda = -J u*.
-  interpolate_at(ib, at_, fluid.next().u, lambda_, name());
+  // M Lambda = -J u* (on a split fluid every process solves the same system).
+  lambda_ = velocity_at_markers(ib, fluid.next().u);
   blas::scale(-1.0, lambda_);
   if (lattice_) {
     std::vector<double> b(lambda_.begin(), lambda_.end());
@@ -123,7 +165,7 @@ void HeldWallSet::hold(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algo
     linalg::lu_solve(mobility_.at(dt), linalg::Op::none, linalg::MatrixView{ptr(lambda_), m, 1, m});
   }
   if (!blas::all_finite(lambda_)) throw NumericalError(Cause::non_finite, name() + ": non-finite wall force");
-  spread_into(ib, algorithm, wall_.X, lambda_, spread_, f, scratch);
+  spread_forces(ib, algorithm, lambda_, f, scratch);
 }
 
 }  // namespace rbfib::sim

@@ -23,7 +23,12 @@
 // Cost per step: a second fluid step, one interpolation and one spreading at the markers, one LU
 // solve of order 3n (flat lattice: two transforms); per new dt, 3n + 1 fluid steps and one LU
 // factorization (O(n^3)) (flat lattice: 4 fluid steps).
+// On a fluid split among processes (fluid/decomposition.hpp) each process interpolates and spreads
+// at the markers in its planes (by their coordinate along the split axis), on the Lagrangian grid;
+// the velocities at all markers are gathered on every process, which each solve the same system
+// (the markers are few: 3n is a few thousand) and spread their own markers' part of the force.
 // Units (CGS): positions cm, forces dyn.
+#include "rbfib/fluid/decomposition.hpp"
 #include "rbfib/fluid/fluid_step.hpp"
 #include "rbfib/linalg/dense.hpp"
 #include "rbfib/sim/circulant_mobility.hpp"
@@ -32,6 +37,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace rbfib::sim {
 
@@ -43,8 +49,9 @@ struct HeldWall {
 
 class HeldWallSet final : public LagrangianSet {
  public:
-  /// Throws InputError naming the field for an empty or non-finite set of markers.
-  explicit HeldWallSet(HeldWall wall);
+  /// Throws InputError naming the field for an empty or non-finite set of markers. On a split
+  /// fluid (`parts`), this process holds the markers in its planes.
+  explicit HeldWallSet(HeldWall wall, const FluidDecomposition* parts = nullptr);
   std::string name() const override { return "held wall '" + wall_.name + "'"; }
   void save() override {}  // nothing moves
   void restore() override {}
@@ -63,10 +70,12 @@ class HeldWallSet final : public LagrangianSet {
   void hold(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algorithm, VectorField& f, VectorField& scratch);
 
   const HeldWall& wall() const { return wall_; }
-  /// The wall force of the last hold() at each marker (dyn), 3n, and its velocity at the markers
-  /// after the step (interpolate_end; cm/s): the slip the solve leaves.
+  /// The wall force of the last hold() at each marker (dyn), 3n (every process: the whole wall),
+  /// and its velocity after the step (interpolate_end; cm/s), the slip the solve leaves, at this
+  /// process's markers (3m, in the order of markers(); one process: every marker).
   const dvec& force() const { return lambda_; }
   const dvec& velocity() const { return U_; }
+  const std::vector<index_t>& markers() const { return mine_; }
   /// The mobilities factored so far (one per dt seen), and the seconds spent building them.
   std::size_t mobilities() const { return mobility_.size() + circulant_.size(); }
   /// Whether the markers tile a periodic plane commensurately (the circulant mobility; known after
@@ -83,8 +92,17 @@ class HeldWallSet final : public LagrangianSet {
   /// force), divided by `trial`: a column of the mobility.
   dvec response(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algorithm, index_t column, double trial, const dvec& U0,
                 VectorField& g, VectorField& scratch);
+  /// J u at every marker (3n) for a velocity u of the fluid's grid (collective on a split fluid).
+  dvec velocity_at_markers(ib::Interaction& ib, const VectorField& u);
+  /// Adds S F into f, a force density of the fluid's grid, for forces F at every marker (3n)
+  /// (collective on a split fluid: each process spreads its markers', summed into the owners).
+  void spread_forces(ib::Interaction& ib, ib::Spreading algorithm, const dvec& F, VectorField& f, VectorField& scratch);
 
   HeldWall wall_;
+  const FluidDecomposition* parts_;  // null: one process
+  std::vector<index_t> mine_;        // this process's markers
+  dvec X_mine_;                      // their positions, 3m
+  VectorField wide_, narrow_;        // a split fluid's Lagrangian-grid field and its owned planes
   ib::SortedPoints at_, spread_;
   dvec U_, lambda_;
   std::map<double, linalg::LuFactors> mobility_;  // by dt

@@ -372,10 +372,9 @@ index_t ImmersedBoundary::add(LdsmShell shell) {
 index_t ImmersedBoundary::add(HeldWall wall) {
   const std::string field = "held wall '" + wall.name + "'";
   require(held_.empty(), field + ": held walls", held_.size() + 1, "must be at most one");
-  require(!fluid_->parts(), field + ": processes", "several", "a held wall runs on one process only");
   require(!fluid_->has_midpoint_velocity(), field + ": fluid", fluid_->name(),
           "must be affine in its force (not Peskin's two-stage scheme, whose advection uses the half step's velocity)");
-  return keep(std::make_unique<HeldWallSet>(std::move(wall)), held_);
+  return keep(std::make_unique<HeldWallSet>(std::move(wall), fluid_->parts()), held_);
 }
 
 index_t ImmersedBoundary::add(Cortex cortex, const LagrangianSet& membrane) {
