@@ -17,10 +17,7 @@ HeldWallSet::HeldWallSet(HeldWall wall, const FluidDecomposition* parts) : wall_
   const std::size_t n = X.size() / 3;
   for (std::size_t k = 0; k < n; ++k)
     if (!parts_ || parts_->owner(X[std::size_t(parts_->split_axis()) * n + k]) == parts_->process()) mine_.push_back(index_t(k));
-  std::vector<double> mine(3 * mine_.size());
-  for (std::size_t d = 0; d < 3; ++d)
-    for (std::size_t q = 0; q < mine_.size(); ++q) mine[d * mine_.size() + q] = X[d * n + std::size_t(mine_[q])];
-  X_mine_ = dvec(mine.begin(), mine.end());
+  X_mine_ = points_at(wall_.X, mine_);
 }
 
 void HeldWallSet::locate(ib::Interaction& ib) { ib.sort(ptr(X_mine_), index_t(mine_.size()), at_); }
@@ -56,32 +53,15 @@ dvec HeldWallSet::velocity_at_markers(ib::Interaction& ib, const VectorField& u)
   }
   for (int a = 0; a < 3; ++a) parts_->widen(u[a], wide_[a]);
   agreed(parts_, [&] { interpolate_at(ib, at_, wide_, U, name()); });
-  // Every process sends each of its markers' index and velocity to every process.
-  const std::vector<double> Um(U.begin(), U.end());
-  const std::size_t m = mine_.size(), n = wall_.X.size() / 3;
-  std::vector<double> message;
-  message.reserve(4 * m);
-  for (std::size_t q = 0; q < m; ++q) {
-    message.push_back(double(mine_[q]));
-    for (std::size_t d = 0; d < 3; ++d) message.push_back(Um[d * m + q]);
-  }
-  std::vector<double> whole(3 * n, NAN);
-  for (const std::vector<double>& from : parts_->exchange(std::vector<std::vector<double>>(std::size_t(parts_->processes()), message)))
-    for (std::size_t i = 0; i + 3 < from.size(); i += 4)
-      for (std::size_t d = 0; d < 3; ++d) whole[d * n + std::size_t(from[i])] = from[i + 1 + d];
-  return dvec(whole.begin(), whole.end());
+  return whole_points(*parts_, U, mine_, index_t(wall_.X.size()) / 3);
 }
 
 void HeldWallSet::spread_forces(ib::Interaction& ib, ib::Spreading algorithm, const dvec& F, VectorField& f, VectorField& scratch) {
   if (!parts_) return spread_into(ib, algorithm, wall_.X, F, spread_, f, scratch);
-  const std::vector<double> all(F.begin(), F.end());
-  const std::size_t m = mine_.size(), n = all.size() / 3;
-  std::vector<double> mine(3 * m);
-  for (std::size_t d = 0; d < 3; ++d)
-    for (std::size_t q = 0; q < m; ++q) mine[d * m + q] = all[d * n + std::size_t(mine_[q])];
+  const dvec mine = points_at(F, mine_);
   const MacGrid& g = parts_->lagrangian_grid();
   for (int a = 0; a < 3; ++a) wide_[a].assign(static_cast<std::size_t>(g.component(a).size()), 0.0);
-  agreed(parts_, [&] { spread_into(ib, algorithm, X_mine_, dvec(mine.begin(), mine.end()), spread_, wide_, scratch); });
+  agreed(parts_, [&] { spread_into(ib, algorithm, X_mine_, mine, spread_, wide_, scratch); });
   for (int a = 0; a < 3; ++a) {
     parts_->narrow_sum(wide_[a], narrow_[a]);
     blas::axpy(1.0, narrow_[a], f[a]);

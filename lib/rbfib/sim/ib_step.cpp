@@ -24,31 +24,6 @@ double seconds_since(clock_type::time_point& t0) {
   t0 = t1;
   return s;
 }
-/// The entries of a point set's positions X (3n, X[d n + k]) at the points `ids`, in their order.
-dvec points_at(const dvec& X, const std::vector<index_t>& ids) {
-  const std::vector<double> x(X.begin(), X.end());
-  const std::size_t n = x.size() / 3, m = ids.size();
-  std::vector<double> out(3 * m);
-  for (std::size_t d = 0; d < 3; ++d)
-    for (std::size_t q = 0; q < m; ++q) out[d * m + q] = x[d * n + std::size_t(ids[q])];
-  return dvec(out.begin(), out.end());
-}
-/// The whole set's positions (3n) from each process's points X at `ids` (collective).
-dvec whole_points(const FluidDecomposition& parts, const dvec& X, const std::vector<index_t>& ids, index_t n) {
-  const std::vector<double> x(X.begin(), X.end());
-  const std::size_t m = ids.size();
-  std::vector<double> mine;  // per point: its index, then x, y, z
-  mine.reserve(4 * m);
-  for (std::size_t q = 0; q < m; ++q) {
-    mine.push_back(double(ids[q]));
-    for (std::size_t d = 0; d < 3; ++d) mine.push_back(x[d * m + q]);
-  }
-  std::vector<double> whole(static_cast<std::size_t>(3 * n), NAN);
-  for (const std::vector<double>& from : parts.exchange(std::vector<std::vector<double>>(std::size_t(parts.processes()), mine)))
-    for (std::size_t i = 0; i + 3 < from.size(); i += 4)
-      for (std::size_t d = 0; d < 3; ++d) whole[d * std::size_t(n) + std::size_t(from[i])] = from[i + 1 + d];
-  return dvec(whole.begin(), whole.end());
-}
 /// The boxes the Lagrangian sets interpolate from and spread into: the fluid's, or on a split fluid
 /// those of the wider grid its cells reach (FluidDecomposition::lagrangian_grid).
 std::array<Box, 3> lagrangian_boxes(const FluidStep& fluid) {

@@ -19,6 +19,7 @@
 // Chapter 3's forward Euler (Sec. 3.3) skips (a) and (b): forces at X^n, X^{n+1} = X^n + dt U.
 // Units (CGS): positions cm, velocities cm/s, forces dyn, force densities dyn/cm^3.
 #include "rbfib/cells/batch.hpp"
+#include "rbfib/fluid/decomposition.hpp"
 #include "rbfib/grid/mac.hpp"
 #include "rbfib/ib/interaction.hpp"
 #include "rbfib/mechanics/energy.hpp"
@@ -58,6 +59,14 @@ class LagrangianSet {
 
 /// U = I u at sorted points; throws NumericalError (non-finite) naming `who` when U is not finite.
 void interpolate_at(ib::Interaction& ib, const ib::SortedPoints& s, const VectorField& u, dvec& U, const std::string& who);
+
+/// The entries of a point set's values (positions, velocities, forces: 3n, X[d n + k]) at the
+/// points `ids`, in their order (3m).
+dvec points_at(const dvec& X, const std::vector<index_t>& ids);
+
+/// The whole set's values (3n) from each process's values X (3m) at its points `ids`
+/// (collective); NaN where no process sent a point.
+dvec whole_points(const FluidDecomposition& parts, const dvec& X, const std::vector<index_t>& ids, index_t n);
 
 /// Adds S F from the points X into f (binned: sorted into `sorted` and added in place; another
 /// algorithm spreads into scratch, then adds).
