@@ -10,7 +10,7 @@
 # fluid 1e-12, the force density 2.2e-11, a small difference of large terms near the rest shape). A scene with walls across z
 # is refused on 2 processes with exit status 2 and one line naming the field. The shortened
 # scenes/platelets_near_wall.yaml (an endothelium of tethered points) gives the same table on 1 and
-# 2 processes.
+# 2 processes, and so does the same scene with its endothelium's plane held by a solve (a held wall).
 #
 # usage: on_ranks.sh RBFIB MPIEXEC SCENE WORKDIR (SCENE: scenes/two_red_cells.yaml, beside the others)
 set -eu
@@ -69,10 +69,20 @@ sed '/snapshot_every/d; s/diagnostics_every: 20/diagnostics_every: 2/' "$(dirnam
 columns tethers_one > t1.csv; columns tethers_two > t2.csv
 [ "$(wc -l < t1.csv)" -eq 6 ] || { echo "FAIL: expected 5 rows of diagnostics with tethered points"; cat t1.csv; exit 1; }
 same t1.csv t2.csv "tethered points on 2 processes differ from one"
+# A held wall (the endothelium's plane held by a solve, 20 x 20 markers 2h apart) with the two platelets.
+sed -e '/snapshot_every/d' -e 's/diagnostics_every: 20/diagnostics_every: 2/' -e '/^tethered_points:/,/^    eta:/d' \
+    -e 's/^output:/held_walls:\n  - {name: endothelium, plane: {y: 1 um, points: [20, 20]}}\noutput:/' \
+    "$(dirname "$scene")/platelets_near_wall.yaml" > held.yaml
+grep -q '^held_walls:' held.yaml && ! grep -q '^tethered_points:' held.yaml || { echo "FAIL: the held-wall scene was not made"; exit 1; }
+"$rbfib" run held.yaml --out held_one --until '0.25 us' > held_one.log
+"$mpiexec" -n 2 "$rbfib" run held.yaml --out held_two --until '0.25 us' > held_two.log
+columns held_one > h1.csv; columns held_two > h2.csv
+[ "$(wc -l < h1.csv)" -eq 6 ] || { echo "FAIL: expected 5 rows of diagnostics with a held wall"; cat h1.csv; exit 1; }
+same h1.csv h2.csv "a held wall on 2 processes differs from one"
 # Walls across z: the multigrid path, one process only.
 sed 's/periodic: \[x, z\]/periodic: [x, y]/; s/^    y: {lower/    z: {lower/' s.yaml > walls_z.yaml
 status=0
 "$mpiexec" -n 2 "$rbfib" run walls_z.yaml --out walls_z > walls_z.out 2> walls_z.err || status=$?
 [ "$status" -eq 2 ] || { echo "FAIL: walls across z on 2 processes: exit status $status, expected 2"; exit 1; }
 [ "$(grep -c '^rbfib: grid.boundary' walls_z.err)" -eq 1 ] || { echo "FAIL: expected one line naming grid.boundary"; cat walls_z.err; exit 1; }
-echo "PASS: 1 and 2 processes agree; restarts 2 -> 1 and 1 -> 2 agree; snapshots one series; tethered points split; walls across z refused"
+echo "PASS: 1 and 2 processes agree; restarts 2 -> 1 and 1 -> 2 agree; snapshots one series; tethered points split; a held wall held; walls across z refused"
