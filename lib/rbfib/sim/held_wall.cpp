@@ -68,6 +68,11 @@ void HeldWallSet::spread_forces(ib::Interaction& ib, ib::Spreading algorithm, co
   }
 }
 
+dvec HeldWallSet::base_velocity(ib::Interaction& ib, FluidStep& fluid) {
+  fluid.step(nullptr);
+  return velocity_at_markers(ib, fluid.next().u);
+}
+
 dvec HeldWallSet::response(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algorithm, index_t column, double trial, const dvec& U0,
                            VectorField& g, VectorField& scratch) {
   dvec F(wall_.X.size(), 0.0);
@@ -86,8 +91,7 @@ linalg::LuFactors HeldWallSet::build(ib::Interaction& ib, FluidStep& fluid, ib::
   const auto t0 = std::chrono::steady_clock::now();
   const index_t m = index_t(wall_.X.size());  // 3n unknowns
   VectorField g = zeros_like(shape);
-  fluid.step(nullptr);  // the base of the columns: the step without force (affine in its force)
-  const dvec U0 = velocity_at_markers(ib, fluid.next().u);
+  const dvec U0 = base_velocity(ib, fluid);
   const double trial = trial_force(fluid);
   std::vector<double> M(static_cast<std::size_t>(m * m));
   for (index_t j = 0; j < m; ++j) {
@@ -104,8 +108,7 @@ CirculantMobility HeldWallSet::build_circulant(ib::Interaction& ib, FluidStep& f
   const auto t0 = std::chrono::steady_clock::now();
   const index_t n = index_t(wall_.X.size()) / 3;
   VectorField g = zeros_like(shape);
-  fluid.step(nullptr);  // the base of the columns: the step without force (affine in its force)
-  const dvec U0 = velocity_at_markers(ib, fluid.next().u);
+  const dvec U0 = base_velocity(ib, fluid);
   const double trial = trial_force(fluid);
   std::array<std::vector<double>, 3> columns;
   const index_t origin = lattice_->marker[0];  // the lattice point (0, 0)

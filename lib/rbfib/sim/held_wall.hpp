@@ -92,6 +92,9 @@ class HeldWallSet final : public LagrangianSet {
   /// force), divided by `trial`: a column of the mobility.
   dvec response(ib::Interaction& ib, FluidStep& fluid, ib::Spreading algorithm, index_t column, double trial, const dvec& U0,
                 VectorField& g, VectorField& scratch);
+  /// The base of the mobility's columns: the velocity at every marker after the step without
+  /// force, from the current state (the fluid step is affine in its force).
+  dvec base_velocity(ib::Interaction& ib, FluidStep& fluid);
   /// J u at every marker (3n) for a velocity u of the fluid's grid (collective on a split fluid).
   dvec velocity_at_markers(ib::Interaction& ib, const VectorField& u);
   /// Adds S F into f, a force density of the fluid's grid, for forces F at every marker (3n)
