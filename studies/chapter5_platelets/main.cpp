@@ -123,7 +123,7 @@ std::vector<double> sample(const sim::ImmersedBoundary& ib, double wall_y) {
 struct WallRun {
   Wall wall;
   std::string suffix, key, label;  // of its run's id and tables; of its values; its row of wall_treatments
-  double share;                    // its part of what is left of the sitting: 1 / share
+  double share = 1;                // its part of what is left of the sitting: 1 / share
   bool checks;                     // the run every check measures
   double t_end;                    // s
   Json series, summary;
@@ -140,6 +140,13 @@ double value_at(const std::vector<double>& t, const std::vector<double>& y, doub
   return NAN;
 }
 
+/// The scene of one wall's run, as YAML.
+std::string scene_text(const WallRun& w, const Setup& s) {
+  return scene::to_yaml(platelets_scene(s, w.wall, w.t_end), w.wall == Wall::grid   ? "chapter5_platelets: two platelets over the grid's flat wall (Sec. 5.2)"
+                                                             : w.wall == Wall::held ? "chapter5_platelets: two platelets over a held flat wall"
+                                                                                    : "chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)");
+}
+
 /// Runs (or continues) one wall's scene; adds its rows to the tables and its values.
 void run_wall(WallRun& w, const Setup& s, const st::Sitting& sitting, const st::Options& opt, Json& results, Json& walls, Json& cost) {
   const double us = units::us, ms = units::ms, gdot = 1000;
@@ -150,9 +157,7 @@ void run_wall(WallRun& w, const Setup& s, const st::Sitting& sitting, const st::
   hooks.after_step = [&w](const sim::ImmersedBoundary& ib) {
     if (ib.held_walls() > 0) w.setup_seconds = ib.held_wall(0).seconds_building();
   };
-  const std::string text = scene::to_yaml(platelets_scene(s, w.wall, w.t_end), w.wall == Wall::grid ? "chapter5_platelets: two platelets over the grid's flat wall (Sec. 5.2)"
-                                                                               : w.wall == Wall::held ? "chapter5_platelets: two platelets over a held flat wall"
-                                                                                                      : "chapter5_platelets: two platelets over a flat endothelium (Sec. 5.2)");
+  const std::string text = scene_text(w, s);
   const run::Cadence every = seed ? run::Cadence{std::max(1L, std::lround(w.t_end / s.dt) / 400)} : run::Cadence{0, w.t_end / 400};
   const st::SceneRun run = st::run_scene(text, id, every, opt.keeps_runs(), opt, hooks, sitting.remaining() / w.share);
   std::vector<double> t;
@@ -237,10 +242,19 @@ int main(int argc, char** argv) {
                            {"", "ms", "us", "us", "", "s", "h", "um", "um/s", "um", "um", "deg", "deg", "", ""});
     Json cost = st::table({"wall", "h_um", "dt_us", "steps", "seconds", "setup_seconds", "seconds_per_step", "steps_to_100ms", "hours_to_100ms", "hours_to_go"},
                           {"", "um", "us", "", "s", "s", "s", "", "h", "h"});
-    WallRun runs[4] = {{Wall::tethers, "", "_tethers", "tethers (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm)", 4, false, s.t_ab, series, summary},
-                       {Wall::grid, "_grid_wall", "_grid_wall", "grid wall", 3, false, s.t_ab, series, summary},
-                       {Wall::held, "_held_wall", "_held_wall", "held wall (markers 2h apart, solved)", 2, false, s.t_ab, series, summary},
+    WallRun runs[4] = {{Wall::tethers, "", "_tethers", "tethers (k = 2.5 dyn/cm, eta = 2.5e-7 dyn s/cm)", 1, false, s.t_ab, series, summary},
+                       {Wall::grid, "_grid_wall", "_grid_wall", "grid wall", 1, false, s.t_ab, series, summary},
+                       {Wall::held, "_held_wall", "_held_wall", "held wall (markers 2h apart, solved)", 1, false, s.t_ab, series, summary},
                        {Wall::rule, "_tether_rule", "_tether_rule", "tethers following the step (gain 0.5)", 1, true, s.t_end, series, summary}};
+    // A sitting is shared equally among the runs that have not ended, taken in turn: each gets what
+    // is left over the number still to go (a run kept ended takes no time).
+    if (opt.keeps_runs()) {
+      int to_go = 0;
+      for (int i = 3; i >= 0; --i) {
+        if (!st::scene_run_ended(scene_text(runs[i], s), "platelets" + runs[i].suffix, opt)) ++to_go;
+        runs[i].share = std::max(1, to_go);
+      }
+    }
     const st::Sitting sitting(opt);
     for (WallRun& w : runs) run_wall(w, s, sitting, opt, results, walls, cost);
     // The A/B at the window's end: each wall against the seed's tethers at their fixed step.

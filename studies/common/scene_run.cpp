@@ -2,16 +2,25 @@
 
 #include "rbfib/core/error.hpp"
 #include "rbfib/core/units.hpp"
+#include "rbfib/io/checkpoint.hpp"
 #include "rbfib/run/run.hpp"
 #include "rbfib/scene/scene.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 
 namespace rbfib::study {
 
 RunProgress SceneRun::progress(double t_end) const {
   return {finished, samples.empty() ? 0.0 : samples.back().at(0), t_end, steps, seconds_per_step(), stopped};
+}
+
+bool scene_run_ended(const std::string& text, const std::string& tag, const Options& opt) {
+  const std::string path = opt.out_dir + "/checkpoint_" + tag + ".h5";
+  if (!std::filesystem::exists(path)) return false;
+  const io::Checkpoint c = io::read_checkpoint(path);
+  return c.scene_yaml == text && c.record.status != io::RunStatus::running;
 }
 
 SceneRun run_scene(const std::string& text, const std::string& tag, run::Cadence every, bool resumable, const Options& opt,

@@ -54,4 +54,8 @@ struct SceneRun {
 SceneRun run_scene(const std::string& text, const std::string& tag, run::Cadence every, bool resumable, const Options& opt,
                    const SceneRunHooks& hooks, double max_seconds = INFINITY);
 
+/// Whether the resumable run of `text` under `tag` has ended (finished or stopped) in a checkpoint
+/// this sitting would continue from: for sharing a sitting among the runs still to go.
+bool scene_run_ended(const std::string& text, const std::string& tag, const Options& opt);
+
 }  // namespace rbfib::study
