@@ -192,33 +192,23 @@ void compute_forces(const Batch& batch, linalg::ConstMatrixView state, CellForce
     t0 = std::chrono::steady_clock::now();
   }
 
-  // 1. Jets: value and derivatives of X (and U) at the sample sites, and with bending those of X at
-  //    the data sites too (rows n_s .. of the type's operators; U's jets there are not used): two
-  //    products, or four with both (the data sites' rows applied to X alone).
-  const index_t nj = type.jet_sites();
-  const index_t ldd = surface::derivative_count * nj;
-  w.values.resize(nj, cols);
-  w.derivatives.resize(ldd, cols);
-  if (bending && dissipation)
-    surface::apply_operators_part(type.operators(), state.block(0, 0, nd, cols), ns, 3 * N, w.values.view(),
-                                  w.derivatives.view(), w.ops);
-  else
-    surface::apply_operators(type.operators(), state.block(0, 0, nd, cols), w.values.view(), w.derivatives.view(), w.ops);
-  out.positions.resize(ns, 3 * N);
-  linalg::copy(w.values.view().block(0, 0, ns, 3 * N), out.positions.view());
-  const double* V = ptr(w.values.storage());
-  const double* D = ptr(w.derivatives.storage());
-  const JetView xj{V, nj, D, ldd, nj, N};
-  const JetView uj = dissipation ? JetView{V + 3 * N * nj, nj, D + 3 * N * ldd, ldd, nj, N} : JetView{};
-  if (timings) timings->jets = seconds_since(t0);
-
-  // 2. Bending: H - H' at the data sites, and the derivatives of H - H' at the sample sites.
-  JetView dhj{};
+  // 1. With bending, H - H' at the data sites first, from the jets of X there (rows n_s .. of the
+  //    type's operators): it then rides as N more columns, [X U (H - H')], through the one pass
+  //    over the sample sites' operators that gives the jets of X (and U); its derivatives there
+  //    enter the Laplace-Beltrami term. One stream of those operators per call, not two: the
+  //    products with few columns (a cell or two) are bound by reading the operators.
+  const index_t both = bending ? cols + N : cols;  // the columns of the sample sites' pass
   if (bending) {
-    const JetView xd{V + ns, nj, D + ns, ldd, nj, N};  // the data-site rows
-    w.dH.resize(nd, N);
+    w.data_values.resize(nd, 3 * N);
+    w.data_derivatives.resize(surface::derivative_count * nd, 3 * N);
+    surface::apply_operators_rows(type.operators(), state.block(0, 0, nd, 3 * N), ns, nd, w.data_values.view(),
+                                  w.data_derivatives.view(), w.ops);
+    if (timings) timings->bending_products = seconds_since(t0);
+    const JetView xd{ptr(w.data_values.storage()), nd, ptr(w.data_derivatives.storage()), surface::derivative_count * nd, nd, N};
+    w.fields.resize(nd, both);
+    linalg::copy(state.block(0, 0, nd, cols), w.fields.view().block(0, 0, nd, cols));
     w.data_status.resize(static_cast<std::size_t>(N * nd));
-    double* dH = ptr(w.dH.storage());
+    double* dH = ptr(w.fields.storage()) + cols * nd;
     int* dstat = ptr(w.data_status);
     const double* H0d = model.H0_reference ? ptr(type.H0_data()) : nullptr;
     for_each_index(N * nd, [=] RBFIB_HD (index_t k) {
@@ -231,11 +221,23 @@ void compute_forces(const Batch& batch, linalg::ConstMatrixView state, CellForce
     });
     raise_first_bad(w.data_status, nd, name, "data");
     if (timings) timings->bending_kernel = seconds_since(t0);
-    w.dH_derivatives.resize(surface::derivative_count * ns, N);
-    surface::apply_operators_rows(type.operators(), w.dH.view(), 0, ns, linalg::MatrixView{}, w.dH_derivatives.view(), w.ops);
-    dhj = JetView{nullptr, ns, ptr(w.dH_derivatives.storage()), surface::derivative_count * ns, ns, N};
-    if (timings) timings->bending_products = seconds_since(t0);
   }
+
+  // 2. Jets at the sample sites: value and derivatives of X (and U), and of H - H' with bending,
+  //    by one product for the values and one (a batch of five) for the derivatives.
+  const index_t ldd = surface::derivative_count * ns;
+  w.values.resize(ns, both);
+  w.derivatives.resize(ldd, both);
+  surface::apply_operators_rows(type.operators(), bending ? linalg::ConstMatrixView(w.fields.view()) : state.block(0, 0, nd, cols), 0, ns,
+                                w.values.view(), w.derivatives.view(), w.ops);
+  out.positions.resize(ns, 3 * N);
+  linalg::copy(w.values.view().block(0, 0, ns, 3 * N), out.positions.view());
+  const double* V = ptr(w.values.storage());
+  const double* D = ptr(w.derivatives.storage());
+  const JetView xj{V, ns, D, ldd, ns, N};
+  const JetView uj = dissipation ? JetView{V + 3 * N * ns, ns, D + 3 * N * ldd, ldd, ns, N} : JetView{};
+  const JetView dhj = bending ? JetView{nullptr, ns, D + cols * ldd, ldd, ns, N} : JetView{};
+  if (timings) timings->jets = seconds_since(t0);
 
   // 3. The site launch: every force density, F^, and per-site sums.
   out.density.resize(ns, 3 * N);

@@ -5,11 +5,12 @@
 // velocities U (columns 3N + d N + c) at the data sites, in cm and cm/s.
 //
 // compute_forces, for every cell at once:
-//   1. jets at the sample sites, and with bending at the data sites too (the type's operators
-//      hold both): value X and derivatives X, two products (with U as 3N more columns when the
-//      type has dissipation); the sample-site values are the positions spread from;
-//   2. bending: H - H' at the data sites, and the derivatives of H - H' at the sample sites (one
-//      more product, N columns);
+//   1. bending only: the jets of X at the data sites (rows n_s .. of the type's operators), and
+//      from them H - H' there;
+//   2. jets at the sample sites: value and derivatives of X, two products (with U as 3N more
+//      columns when the type has dissipation, and H - H' as N more with bending, so that the
+//      operators are read once: with few cells the products are bound by that read); the
+//      sample-site values are the positions spread from;
 //   3. one launch over the N n_s sample sites: the force density of every energy of the type's
 //      model (eq. 35 for W(I1, I2), eq. 84 / 2.13 for bending, eq. 2.14 for dissipation), per unit
 //      reference area, the force F^ = F dA0 (eq. 52) plus each cell's body force spread in
@@ -52,8 +53,8 @@ struct CellDiagnostics {
 /// Wall time of the phases of one force call (s), measured only when asked for (it
 /// synchronizes the device between phases).
 struct ForceTimings {
-  double jets = 0;              ///< products: position (and velocity) jets at the sample (and data) sites
-  double bending_products = 0;  ///< products: the derivatives of H - H' at the sample sites
+  double jets = 0;              ///< products at the sample sites: the jets of X (and U), and of H - H' with bending
+  double bending_products = 0;  ///< products: the jets of X at the data sites, for H (bending)
   double bending_kernel = 0;    ///< H - H' at the data sites and its status reduction
   double kernels = 0;           ///< the site launch: geometry, every force density, F^
   double reductions = 0;        ///< the status reduction and the per-cell sums
@@ -103,7 +104,9 @@ class Batch {
 
   /// Workspace of the force call, reused between calls (no allocation after the first).
   struct Workspace {
-    linalg::DeviceMatrix values, derivatives, dH, dH_derivatives;
+    linalg::DeviceMatrix values, derivatives;            // jets at the sample sites
+    linalg::DeviceMatrix data_values, data_derivatives;  // jets of X at the data sites (bending)
+    linalg::DeviceMatrix fields;                         // [X U (H - H')] at the data sites (bending)
     surface::OperatorWorkspace ops;
     device_vector<int> status, data_status;
     dvec site_sums;       // per site: 7 contributions (energy, dissipation, area, volume, 3 moments)

@@ -168,40 +168,6 @@ void apply_operators(const SurfaceOperators& ops, linalg::ConstMatrixView F, lin
     linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, ops.derivatives.view(), in, 0.0, derivatives);
 }
 
-void apply_operators_part(const SurfaceOperators& ops, linalg::ConstMatrixView F, index_t rows, index_t narrow,
-                          linalg::MatrixView value, linalg::MatrixView derivatives, OperatorWorkspace& work) {
-  const index_t ns = ops.n_sample(), cols = F.cols;
-  require(rows >= 0 && rows <= ns, "surface operators: sites of every column", rows, "must lie in [0, " + to_text(ns) + "]");
-  require(narrow >= 0 && narrow <= cols, "surface operators: columns at every site", narrow, "must lie in [0, " + to_text(cols) + "]");
-  require(value.rows == ns && value.cols == cols && derivatives.rows == derivative_count * ns && derivatives.cols == cols,
-          "surface operators: outputs", to_text(value.rows) + " x " + to_text(value.cols),
-          "must be n_s x cols and 5 n_s x cols (" + to_text(ns) + " x " + to_text(cols) + ")");
-  const index_t rest = ns - rows;
-  if (ops.single_precision()) {
-    single_operand(ops, F, work);
-    single_products(ops, 0, rows, cols, value.block(0, 0, rows, cols), derivatives.block(0, 0, derivative_count * ns, cols), ns,
-                    work);
-    if (rest > 0 && narrow > 0)
-      single_products(ops, rows, rest, narrow, value.block(rows, 0, rest, narrow),
-                      derivatives.block(rows, 0, derivative_count * ns - rows, narrow), ns, work);
-    return;
-  }
-  const linalg::ConstMatrixView in = operand(ops, F, work);
-  const linalg::ConstMatrixView V = ops.value.view(), D = ops.derivatives.view();
-  const index_t k = V.cols;
-  using linalg::Op;
-  // sites [0, rows), every column; derivative q in rows q ns + i of both D and the output
-  linalg::gemm(Op::none, Op::none, 1.0, V.block(0, 0, rows, k), in, 0.0, value.block(0, 0, rows, cols));
-  linalg::gemm_strided_batched(Op::none, Op::none, 1.0, D.block(0, 0, rows, k), ns, in, 0, 0.0,
-                               derivatives.block(0, 0, rows, cols), ns, derivative_count);
-  if (rest == 0 || narrow == 0) return;
-  // sites [rows, n_s), the first `narrow` columns
-  const linalg::ConstMatrixView in_narrow = in.block(0, 0, in.rows, narrow);
-  linalg::gemm(Op::none, Op::none, 1.0, V.block(rows, 0, rest, k), in_narrow, 0.0, value.block(rows, 0, rest, narrow));
-  linalg::gemm_strided_batched(Op::none, Op::none, 1.0, D.block(rows, 0, rest, k), ns, in_narrow, 0, 0.0,
-                               derivatives.block(rows, 0, rest, narrow), ns, derivative_count);
-}
-
 void apply_operators_rows(const SurfaceOperators& ops, linalg::ConstMatrixView F, index_t row0, index_t rows,
                           linalg::MatrixView value, linalg::MatrixView derivatives, OperatorWorkspace& work) {
   const index_t ns = ops.n_sample();

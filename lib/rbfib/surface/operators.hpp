@@ -99,13 +99,6 @@ struct OperatorWorkspace {
 void apply_operators(const SurfaceOperators& ops, linalg::ConstMatrixView F, linalg::MatrixView value,
                      linalg::MatrixView derivatives, OperatorWorkspace& work);
 
-/// apply_operators with part of the work left out: every site for the first `narrow` columns of F,
-/// and only the sites [0, rows) for the other columns (value n_s x cols and derivatives 5 n_s x
-/// cols as apply_operators; the entries of sites >= rows in columns >= narrow are not written).
-/// Four products (two of them batches of five) instead of two.
-void apply_operators_part(const SurfaceOperators& ops, linalg::ConstMatrixView F, index_t rows, index_t narrow,
-                          linalg::MatrixView value, linalg::MatrixView derivatives, OperatorWorkspace& work);
-
 /// The same for the sample sites [row0, row0 + rows) only: value is rows x cols and derivatives
 /// 5 rows x cols (derivative q of site row0 + i in row q rows + i), by one product for the values
 /// and one strided batch of five for the derivatives.
