@@ -323,14 +323,15 @@ void measure(const Batch& batch, CellGeometry& out) {
   const std::string& name = type.name();
   const index_t N = batch.size(), ns = type.n_sample(), nd = type.n_data(), total = N * ns;
   Batch::Workspace& w = batch.workspace();
-  // Jets of the positions at the sample (and data) sites: value and derivatives.
-  const index_t nj = type.jet_sites(), ldd = surface::derivative_count * nj;
-  w.values.resize(nj, 3 * N);
+  // Jets of the positions at the sample sites: value and derivatives.
+  const index_t ldd = surface::derivative_count * ns;
+  w.values.resize(ns, 3 * N);
   w.derivatives.resize(ldd, 3 * N);
-  surface::apply_operators(type.operators(), batch.state().view().block(0, 0, nd, 3 * N), w.values.view(), w.derivatives.view(), w.ops);
+  surface::apply_operators_rows(type.operators(), batch.state().view().block(0, 0, nd, 3 * N), 0, ns, w.values.view(), w.derivatives.view(),
+                                w.ops);
   out.positions.resize(ns, 3 * N);
-  linalg::copy(w.values.view().block(0, 0, ns, 3 * N), out.positions.view());
-  const JetView xj{ptr(w.values.storage()), nj, ptr(w.derivatives.storage()), ldd, nj, N};
+  linalg::copy(w.values.view(), out.positions.view());
+  const JetView xj{ptr(w.values.storage()), ns, ptr(w.derivatives.storage()), ldd, ns, N};
   const JetView zj = type.reference_jets();
   const double* dA0 = ptr(type.dA0());
   constexpr int q = 5;  // area, volume, 3 volume moments

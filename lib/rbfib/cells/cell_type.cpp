@@ -166,7 +166,7 @@ std::string CellType::describe() const {
 
 ProductFlops product_flops(const CellTypeSpec& spec, index_t N) {
   const double nd = double(spec.data_sites.size()), ns = double(spec.sample_sites.size());
-  const double nj = ns + (spec.model.bending() ? nd : 0.0);  // the operators' rows (CellType::jet_sites)
+  const double nj = ns + (spec.model.bending() ? nd : 0.0);  // the operators' rows: n_s, and n_d with bending
   ProductFlops f;
   const double cols = (spec.model.dissipation() ? 6.0 : 3.0) * double(N);
   // the sample sites' rows on X (and U); the data sites' rows (bending) on X alone

@@ -88,8 +88,6 @@ class CellType {
 
   /// The type's operators: the sample sites, then (with bending) the data sites.
   const surface::SurfaceOperators& operators() const { return *operators_; }
-  /// Rows of operators(): n_s, plus n_d with bending.
-  index_t jet_sites() const { return operators_->n_sample(); }
   /// Data -> sample and data -> data operators as sets of their own, for the per-cell host path
   /// (mechanics/shell.hpp); copies of row blocks of operators(), made on first use. at_data() is
   /// null without bending.
