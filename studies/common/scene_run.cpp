@@ -16,8 +16,13 @@ RunProgress SceneRun::progress(double t_end) const {
   return {finished, samples.empty() ? 0.0 : samples.back().at(0), t_end, steps, seconds_per_step(), stopped};
 }
 
+namespace {
+/// Where the resumable run under `tag` keeps its checkpoint.
+std::string checkpoint_path(const Options& opt, const std::string& tag) { return opt.out_dir + "/checkpoint_" + tag + ".h5"; }
+}  // namespace
+
 bool scene_run_ended(const std::string& text, const std::string& tag, const Options& opt) {
-  const std::string path = opt.out_dir + "/checkpoint_" + tag + ".h5";
+  const std::string path = checkpoint_path(opt, tag);
   if (!std::filesystem::exists(path)) return false;
   const io::Checkpoint c = io::read_checkpoint(path);
   return c.scene_yaml == text && c.record.status != io::RunStatus::running;
@@ -30,7 +35,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, run::Cadence
   run::Options o;
   o.t_end = sc.t_end;
   o.sitting = resumable ? std::max(0.0, max_seconds) : INFINITY;  // a spent sitting takes no step
-  if (resumable) o.checkpoint = opt.out_dir + "/checkpoint_" + tag + ".h5";
+  if (resumable) o.checkpoint = checkpoint_path(opt, tag);
   o.sample_every = every;
   run::Hooks h;
   h.built = hooks.at_start;
