@@ -1,6 +1,7 @@
 """Command line: python3 -m harness run <study|chapter|all> [--scale quick|full] [options]."""
 import argparse
 import datetime
+import filecmp
 import json
 import os
 import shutil
@@ -126,11 +127,18 @@ def keep_study(name, scale, runs, max_mib=32.0):
         print(f"harness: {name}: not kept: {rel} ({os.path.getsize(os.path.join(src, rel)) / 2**20:.0f} MiB, "
               f"above --max-mib {max_mib:g}); its run continues only on this machine")
     files = [rel for rel in files if rel not in large]
-    for rel in files:
+    # Only the checkpoints that differ from their kept copies are copied: each one committed adds its
+    # whole size to the repository's history, so a run's checkpoint is best kept once a sitting.
+    changed = [rel for rel in files if not os.path.exists(os.path.join(dst, rel))
+               or not filecmp.cmp(os.path.join(src, rel), os.path.join(dst, rel), shallow=False)]
+    for rel in changed:
         os.makedirs(os.path.dirname(os.path.join(dst, rel)), exist_ok=True)
         shutil.copy2(os.path.join(src, rel), os.path.join(dst, rel))
     size = sum(os.path.getsize(os.path.join(dst, rel)) for rel in files)
-    print(f"harness: {name}: kept {len(files)} checkpoints ({size / 2**20:.1f} MiB) in {dst}")
+    new = sum(os.path.getsize(os.path.join(dst, rel)) for rel in changed)
+    print(f"harness: {name}: kept {len(files)} checkpoints ({size / 2**20:.1f} MiB) in {dst}; "
+          f"{len(changed)} new or changed ({new / 2**20:.1f} MiB): {', '.join(changed) or 'none'}")
+    return changed
 
 
 def continue_from_kept(name, scale, run_dir):

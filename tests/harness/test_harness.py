@@ -297,7 +297,9 @@ class KeptCheckpoints(unittest.TestCase):
             old = cli.KEPT
             cli.KEPT = kept
             try:
-                cli.keep_study("study_x", "full", runs, max_mib=0.5)  # the 1 MiB checkpoint is not kept
+                self.assertEqual(cli.keep_study("study_x", "full", runs, max_mib=0.5),  # the 1 MiB checkpoint is not kept
+                                 [os.path.join("grid_a", "checkpoint.h5")])
+                self.assertEqual(cli.keep_study("study_x", "full", runs, max_mib=0.5), [])  # unchanged: nothing copied
                 self.assertEqual(cli.checkpoints(os.path.join(kept, "study_x", "full")), [os.path.join("grid_a", "checkpoint.h5")])
                 fresh = os.path.join(tmp, "fresh")
                 cli.continue_from_kept("study_x", "full", fresh)
