@@ -20,7 +20,9 @@ Each variant's run directory is runs/platelet_wall_tilt/<label>/; the table (til
 tilt and the volume's change, from the diagnostics every 50 steps, at 0.25, 0.5, 1, 2 ms and the
 end) goes to stdout and to runs/platelet_wall_tilt/summary.csv (with --only, summary_<labels>.csv,
 so that two runs side by side keep theirs). --quick: h = 0.4 um and 400 / 400 sites (the study's
-quick sizes), to check the tool itself in a minute. --h-um and --sites refine the grid and the
+quick sizes), to check the tool itself in a minute. With the free variant among them (or with
+--measure-only, on the snapshots already written, finished or not) it prints each variant's tilt
+less the free platelet's every 30 us: the wall's part of the turn. --h-um and --sites refine the grid and the
 surface (the sites default to the seed's n h^2: 3,600 at h = 0.1 um), into
 runs/platelet_wall_tilt_h<h>_n<sites>/.
 """
@@ -76,7 +78,7 @@ def volumes(run_dir):
 
 
 def measure(run_dir):
-    """(t s, tilt rad, gap um, centre height um) per snapshot, from the sample sites."""
+    """(t s, tilt rad, gap um) per snapshot, from the sample sites."""
     rows = []
     for f in sorted(glob.glob(os.path.join(run_dir, "snapshots", "*.h5"))):
         with h5py.File(f, "r") as h:
@@ -85,8 +87,27 @@ def measure(run_dir):
         c = X.mean(axis=0)
         _, v = np.linalg.eigh((X - c).T @ (X - c))
         a = v[:, 0]  # the short axis
-        rows.append((t, math.atan(a[2] / a[1]), (X[:, 1].min()) * 1e4, c[1] * 1e4))
+        rows.append((t, math.atan(a[2] / a[1]), X[:, 1].min() * 1e4))
     return rows
+
+
+def wall_part(base, labels, every_us=30.0):
+    """Each label's tilt less the free platelet's (deg), at common times every `every_us` up to the
+    end both reached: the wall's part of the turn. Works on unfinished runs (their snapshots)."""
+    series = {}
+    for label in labels + ["free"]:
+        rows = measure(os.path.join(base, label))
+        if rows:
+            series[label] = (np.array([q[0] for q in rows]) * 1e6, np.degrees([q[1] for q in rows]))
+    if "free" not in series:
+        return
+    for label in labels:
+        if label == "free" or label not in series:
+            continue
+        end = min(series[label][0][-1], series["free"][0][-1])
+        times = np.arange(every_us, end + 1e-9, every_us)
+        parts = [f"{t:g} us {np.interp(t, *series[label]) - np.interp(t, *series['free']):+.3f}" for t in times]
+        print(f"{label} less free (deg): " + ", ".join(parts), flush=True)
 
 
 def main():
@@ -96,6 +117,8 @@ def main():
     p.add_argument("--quick", action="store_true", help="h = 0.4 um, 400 / 400 sites (a check of the tool)")
     p.add_argument("--h-um", type=float, default=0.2, help="grid spacing (um; default 0.2, the study's full scale)")
     p.add_argument("--sites", type=int, default=None, help="data = sample sites (default 900 (0.2 um / h)^2, the seed's n h^2)")
+    p.add_argument("--measure-only", action="store_true",
+                   help="run nothing: print each label's tilt less the free platelet's from the snapshots already there")
     p.add_argument("--rbfib", default=os.path.join(ROOT, "build", "bin", "rbfib"))
     a = p.parse_args()
     if a.end_ms <= 0:
@@ -111,6 +134,9 @@ def main():
     if h <= 0 or n < 16:
         sys.exit(f"platelet_wall_tilt: --h-um = {h}, --sites = {n}: need h > 0 and at least 16 sites")
     base = os.path.join(ROOT, "runs", "platelet_wall_tilt" + ("_quick" if a.quick else "" if (h, n) == (0.2, 900) else f"_h{h:g}_n{n}"))
+    if a.measure_only:
+        wall_part(base, labels)
+        return
     at_ms = sorted({x for x in (0.25, 0.5, 1.0, 2.0, 4.0, 8.0) if x < a.end_ms * (1 - 1e-9)} | {a.end_ms})
     table = []
     for label in labels:
@@ -145,6 +171,7 @@ def main():
         w = csv.DictWriter(f, fieldnames=list(table[0]))
         w.writeheader()
         w.writerows(table)
+    wall_part(base, labels)
 
 
 if __name__ == "__main__":
