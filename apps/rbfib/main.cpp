@@ -393,6 +393,10 @@ int main(int argc, char** argv) {
   CLI::App* restartc = app.add_subcommand("restart", "continue a run from the newest checkpoint in its output directory");
   restartc->add_option("out", out, "the run's output directory")->required();
   restartc->add_option("--until", until_text, "stop at this simulated time (with its unit); default: the scene's end");
+  std::vector<std::string> slim_paths;
+  CLI::App* slimc = app.add_subcommand("slim", "rewrite the checkpoints of runs that have ended without their fluid (cells, series and clock kept; "
+                                                "about a fiftieth of the file); a running run's is refused");
+  slimc->add_option("checkpoints", slim_paths, "checkpoint files (HDF5)")->required();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -402,6 +406,16 @@ int main(int argc, char** argv) {
     const double until = until_text.empty() ? 0.0 : parse_quantity(until_text, "s", "--until");
     if (!until_text.empty() && !(until > 0)) throw InputError("--until", until_text, "must be positive");
     if (*restartc) return restart(out, until, procs);
+    if (*slimc) {
+      for (const std::string& path : slim_paths) {
+        if (!std::filesystem::is_regular_file(path)) throw InputError("checkpoint", path, "does not exist");
+        const auto before = std::filesystem::file_size(path);
+        const bool done = io::slim_checkpoint(path);
+        std::cout << path << ": " << (done ? "" : "already ") << "without its fluid, " << before / 1000 << " -> "
+                  << std::filesystem::file_size(path) / 1000 << " kB" << std::endl;
+      }
+      return 0;
+    }
     const scene::Scene s = scene::load_scene(scene_path);
     if (*check) {
       if (!procs.writer()) return 0;

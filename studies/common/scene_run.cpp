@@ -24,7 +24,7 @@ std::string checkpoint_path(const Options& opt, const std::string& tag) { return
 bool scene_run_ended(const std::string& text, const std::string& tag, const Options& opt) {
   const std::string path = checkpoint_path(opt, tag);
   if (!std::filesystem::exists(path)) return false;
-  const io::Checkpoint c = io::read_checkpoint(path);
+  const io::CheckpointHeader c = io::read_checkpoint_header(path);
   return c.scene_yaml == text && c.record.status != io::RunStatus::running;
 }
 
@@ -36,6 +36,7 @@ SceneRun run_scene(const std::string& text, const std::string& tag, run::Cadence
   o.t_end = sc.t_end;
   o.sitting = resumable ? std::max(0.0, max_seconds) : INFINITY;  // a spent sitting takes no step
   if (resumable) o.checkpoint = checkpoint_path(opt, tag);
+  o.ended_keeps_fluid = false;  // what is taken from an ended run: its series and its cells and points
   o.sample_every = every;
   run::Hooks h;
   h.built = hooks.at_start;

@@ -133,6 +133,32 @@ class Restart(unittest.TestCase):
             self.assertIn("finished", r.stdout)
             self.assertEqual(self.physics(out), rows)
             self.assertEqual(len(rows), 1 + 5)
+            # Slimmed (its fluid left out), the finished run still answers the same and is smaller.
+            checkpoint = os.path.join(out, "checkpoint.h5")
+            before = os.path.getsize(checkpoint)
+            r = rbfib("slim", checkpoint)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            self.assertIn("without its fluid", r.stdout)
+            self.assertLess(os.path.getsize(checkpoint), before)
+            self.assertIn("already", rbfib("slim", checkpoint).stdout)
+            r = rbfib("restart", out, timeout=300)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            self.assertIn("done: 0 steps", r.stdout)
+            self.assertEqual(self.physics(out), rows)
+
+    def test_slim_refuses_a_running_run_and_a_missing_file(self):
+        scene = os.path.join(ROOT, "scenes", "relaxing_sphere.yaml")
+        with tempfile.TemporaryDirectory() as d:
+            self.assertEqual(rbfib("run", scene, "--out", d, "--until", "0.8 us", timeout=300).returncode, 0)
+            checkpoint = os.path.join(d, "checkpoint.h5")
+            before = os.path.getsize(checkpoint)
+            r = rbfib("slim", checkpoint)
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("only a run that has ended", r.stderr)
+            self.assertEqual(os.path.getsize(checkpoint), before)
+            r = rbfib("slim", os.path.join(d, "none.h5"))
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("does not exist", r.stderr)
 
     def test_two_runs_of_one_scene_are_bitwise_identical(self):
         # Two processes, one scene on a 48^3 grid: the checkpoints hold the same bits. (FFT plans

@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -197,6 +198,73 @@ TEST(RunLoop, SeriesOfAnyRowWidthSurviveTheCheckpoint) {
   EXPECT_TRUE(r.columns.empty());
   ASSERT_EQ(k.record.series.count("empty"), 1u);
   EXPECT_TRUE(k.record.series.at("empty").rows.empty());
+}
+
+TEST(RunLoop, AnEndedRunKeptWithoutItsFluidAnswersAsBeforeAndItsFluidReadsNaN) {
+  const std::string text = sphere_scene("0.4 us", "0.8 us");
+  Options o;
+  o.t_end = 0.8 * units::us;
+  o.checkpoint = temp_path("slim.h5");
+  o.ended_keeps_fluid = false;
+  std::filesystem::remove(o.checkpoint);
+  // A sitting that ends before the run does keeps the fluid: the run continues from it.
+  o.until = 0.4 * units::us;
+  run::Run(text, "sphere", o, energy_hooks()).evolve();
+  EXPECT_TRUE(io::read_checkpoint_header(o.checkpoint).fluid_kept);
+  EXPECT_THROW(io::slim_checkpoint(o.checkpoint), InputError);
+  o.until = INFINITY;
+  run::Run first(text, "sphere", o, energy_hooks());
+  ASSERT_TRUE(first.continued());
+  EXPECT_EQ(first.evolve().status, RunStatus::finished);
+  const io::CheckpointHeader h = io::read_checkpoint_header(o.checkpoint);
+  EXPECT_EQ(h.scene_yaml, text);
+  EXPECT_EQ(h.record.status, RunStatus::finished);
+  EXPECT_FALSE(h.fluid_kept);
+  EXPECT_EQ(h.clock.step, 2);
+  EXPECT_EQ(h.clock.t, first.ib().time());
+  EXPECT_TRUE(h.record.series.empty());  // the header reads no series
+  run::Run again(text, "sphere", o, energy_hooks());
+  ASSERT_TRUE(again.continued());
+  EXPECT_FALSE(again.fluid_kept());
+  const Progress p = again.evolve();
+  EXPECT_EQ(p.status, RunStatus::finished);
+  EXPECT_EQ(p.sitting_steps, 0);
+  EXPECT_EQ(again.series("energy").rows, first.series("energy").rows);
+  const host_vector<double> a = first.ib().batch(0).state().storage(), b = again.ib().batch(0).state().storage();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], b[k]) << k;
+  const host_vector<double> u = again.ib().fluid_state().u[0];
+  ASSERT_FALSE(u.empty());
+  for (double v : u) ASSERT_TRUE(std::isnan(v));
+  again.checkpoint();  // written again: still without its fluid, never with the NaN in its place
+  EXPECT_FALSE(io::read_checkpoint_header(o.checkpoint).fluid_kept);
+}
+
+TEST(RunLoop, SlimmingAFinishedRunsCheckpointKeepsAllButItsFluid) {
+  const std::string text = sphere_scene("0.4 us", "0.8 us");
+  Options o;
+  o.t_end = 0.8 * units::us;
+  o.checkpoint = temp_path("to_slim.h5");
+  std::filesystem::remove(o.checkpoint);
+  run::Run(text, "sphere", o, energy_hooks()).evolve();
+  const io::Checkpoint whole = io::read_checkpoint(o.checkpoint);
+  ASSERT_TRUE(whole.fluid_kept);
+  const auto before = std::filesystem::file_size(o.checkpoint);
+  EXPECT_TRUE(io::slim_checkpoint(o.checkpoint));
+  EXPECT_FALSE(io::slim_checkpoint(o.checkpoint));  // nothing left to take out
+  EXPECT_LT(std::filesystem::file_size(o.checkpoint), before);
+  const io::Checkpoint slim = io::read_checkpoint(o.checkpoint);
+  EXPECT_FALSE(slim.fluid_kept);
+  EXPECT_TRUE(slim.state.fluid.u[0].empty());
+  EXPECT_EQ(slim.state.fluid.t, whole.state.fluid.t);
+  EXPECT_EQ(slim.state.clock.step, whole.state.clock.step);
+  EXPECT_EQ(slim.scene_yaml, whole.scene_yaml);
+  EXPECT_EQ(slim.record.status, whole.record.status);
+  EXPECT_EQ(slim.record.wall_seconds, whole.record.wall_seconds);
+  EXPECT_EQ(slim.record.series.at("energy").rows, whole.record.series.at("energy").rows);
+  const host_vector<double> a = whole.state.batches.at(0), b = slim.state.batches.at(0);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], b[k]) << k;
 }
 
 }  // namespace

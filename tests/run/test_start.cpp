@@ -133,6 +133,16 @@ TEST(Start, MismatchesAreNamed) {
   // A missing file.
   EXPECT_NE(testing::message_of<InputError>([&] { build_scene(scene::parse_scene(second_scene(file + ".none", "[8 um, 12 um, 8 um]"), "x")); }),
             "");
+  // An ended run's checkpoint written without its fluid.
+  const std::string slim = temp_path("mismatch_slim.h5");
+  RunRecord ended;
+  ended.status = RunStatus::finished;
+  write_checkpoint(slim, a.source, first, ended, false);
+  EXPECT_NE(testing::message_of<InputError>([&] { build_scene(scene::parse_scene(second_scene(slim, "[8 um, 12 um, 8 um]"), "x")); })
+                .find("keeps no fluid"),
+            std::string::npos);
+  // ... which a running run's may not be.
+  EXPECT_THROW(write_checkpoint(slim, a.source, first, RunRecord{}, false), InputError);
   // to_yaml writes the start back.
   const scene::Scene b = scene::parse_scene(second_scene(file, "[8 um, 12 um, 8 um]"), "second");
   const scene::Scene again = scene::parse_scene(scene::to_yaml(b), "again");

@@ -83,10 +83,13 @@ const char* to_string(RunStatus s) {
   return "unknown";
 }
 
-void write_checkpoint(const std::string& path, const std::string& scene_yaml, const sim::ImmersedBoundary& ib,
-                      const RunRecord& record) {
-  const sim::ImmersedBoundary::Carried c = ib.carried();  // on a split fluid: the whole run's, on every process
-  if (const FluidDecomposition* parts = ib.fluid().parts(); parts && parts->process() != 0) return;  // process 0 writes
+namespace {
+
+/// The file itself (atomically: PATH.tmp, then renamed over PATH).
+void write_file(const std::string& path, const std::string& scene_yaml, const sim::ImmersedBoundary::Carried& c,
+                const RunRecord& record, bool keep_fluid) {
+  if (!keep_fluid && record.status == RunStatus::running)
+    throw InputError("checkpoint " + path, "without its fluid", "only a run that has ended may leave out its fluid: a running one continues from it");
   const std::string tmp = path + ".tmp";
   auto array = [](hid_t where, const std::string& name, const dvec& v) {
     const host_vector<double> h = v;
@@ -124,11 +127,13 @@ void write_checkpoint(const std::string& path, const std::string& scene_yaml, co
     {
       Id fluid = h5::create_group(file, "fluid");
       h5::attribute(fluid, "t", c.fluid.t);
-      const char* u[3] = {"u0", "u1", "u2"};
-      for (int a = 0; a < 3; ++a) array(fluid, u[a], c.fluid.u[a]);
-      array(fluid, "p", c.fluid.p);
-      array(fluid, "phi0", c.fluid.phi[0]);
-      array(fluid, "phi1", c.fluid.phi[1]);
+      if (keep_fluid) {
+        const char* u[3] = {"u0", "u1", "u2"};
+        for (int a = 0; a < 3; ++a) array(fluid, u[a], c.fluid.u[a]);
+        array(fluid, "p", c.fluid.p);
+        array(fluid, "phi0", c.fluid.phi[0]);
+        array(fluid, "phi1", c.fluid.phi[1]);
+      }
     }
     {
       Id batches = h5::create_group(file, "batches");
@@ -149,24 +154,70 @@ void write_checkpoint(const std::string& path, const std::string& scene_yaml, co
   h5::replace(tmp, path);
 }
 
-Checkpoint read_checkpoint(const std::string& path) {
-  const Reader r(path);
-  if (!std::filesystem::exists(path)) throw InputError("checkpoint", path, "does not exist");
-  const Id file = h5::open_file(path);
-  if (!file.valid()) throw InputError("checkpoint", path, "is not a readable HDF5 file");
+/// The scene, the clock, the run's attributes and whether the fluid's arrays are there.
+CheckpointHeader read_header(const Reader& r, hid_t file) {
   const std::string version = r.string_attribute(file, "format");
   if (version != format && version != format_1) r.fail("format (expected '" + std::string(format) + "')");
-  Checkpoint k;
-  k.scene_yaml = r.bytes(file, "scene");
-  sim::Clock& clock = k.state.clock;
-  clock.step = r.attribute<long>(file, "steps", H5T_NATIVE_LONG);
-  clock.dt = r.attribute<double>(file, "dt", H5T_NATIVE_DOUBLE);
-  clock.level = r.attribute<int>(file, "level", H5T_NATIVE_INT);
-  clock.allowing = r.attribute<int>(file, "allowing", H5T_NATIVE_INT);
+  CheckpointHeader h;
+  h.scene_yaml = r.bytes(file, "scene");
+  h.clock.step = r.attribute<long>(file, "steps", H5T_NATIVE_LONG);
+  h.clock.dt = r.attribute<double>(file, "dt", H5T_NATIVE_DOUBLE);
+  h.clock.level = r.attribute<int>(file, "level", H5T_NATIVE_INT);
+  h.clock.allowing = r.attribute<int>(file, "allowing", H5T_NATIVE_INT);
+  if (H5Lexists(file, "fluid", H5P_DEFAULT) <= 0) r.fail("fluid");
   {
-    if (H5Lexists(file, "fluid", H5P_DEFAULT) <= 0) r.fail("fluid");
     Id fluid{H5Gopen2(file, "fluid", H5P_DEFAULT), H5Gclose};
-    k.state.fluid.t = clock.t = r.attribute<double>(fluid, "t", H5T_NATIVE_DOUBLE);
+    h.clock.t = r.attribute<double>(fluid, "t", H5T_NATIVE_DOUBLE);
+    h.fluid_kept = H5Lexists(fluid, "u0", H5P_DEFAULT) > 0;
+  }
+  if (version == format_1) {
+    if (!h.fluid_kept) r.fail("fluid/u0");
+    return h;
+  }
+  h.record.status = status_named(r.string_attribute(file, "status"), r);
+  h.record.stop_message = r.string_attribute(file, "stop_message");
+  h.record.stop_cause = cause_named(r.string_attribute(file, "stop_cause"), r);
+  h.record.wall_seconds = r.attribute<double>(file, "wall_seconds", H5T_NATIVE_DOUBLE);
+  h.record.steps_timed = r.attribute<long>(file, "steps_timed", H5T_NATIVE_LONG);
+  h.record.label = r.string_attribute(file, "label");
+  if (!h.fluid_kept && h.record.status == RunStatus::running) r.fail("fluid/u0 (a running run continues from its fluid)");
+  return h;
+}
+
+Id open_checkpoint(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw InputError("checkpoint", path, "does not exist");
+  Id file = h5::open_file(path);
+  if (!file.valid()) throw InputError("checkpoint", path, "is not a readable HDF5 file");
+  return file;
+}
+
+}  // namespace
+
+void write_checkpoint(const std::string& path, const std::string& scene_yaml, const sim::ImmersedBoundary& ib,
+                      const RunRecord& record, bool keep_fluid) {
+  const sim::ImmersedBoundary::Carried c = ib.carried();  // on a split fluid: the whole run's, on every process
+  if (const FluidDecomposition* parts = ib.fluid().parts(); parts && parts->process() != 0) return;  // process 0 writes
+  write_file(path, scene_yaml, c, record, keep_fluid);
+}
+
+CheckpointHeader read_checkpoint_header(const std::string& path) {
+  const Reader r(path);
+  const Id file = open_checkpoint(path);
+  return read_header(r, file);
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  const Reader r(path);
+  const Id file = open_checkpoint(path);
+  CheckpointHeader h = read_header(r, file);
+  Checkpoint k;
+  k.scene_yaml = std::move(h.scene_yaml);
+  k.state.clock = h.clock;
+  k.record = std::move(h.record);
+  k.fluid_kept = h.fluid_kept;
+  k.state.fluid.t = h.clock.t;
+  if (k.fluid_kept) {
+    Id fluid{H5Gopen2(file, "fluid", H5P_DEFAULT), H5Gclose};
     const char* u[3] = {"u0", "u1", "u2"};
     for (int a = 0; a < 3; ++a) k.state.fluid.u[a] = r.array(fluid, u[a]);
     k.state.fluid.p = r.array(fluid, "p");
@@ -193,14 +244,10 @@ Checkpoint read_checkpoint(const std::string& path) {
       into.emplace_back(x.begin(), x.end());
     }
   }
-  if (version == format_1) return k;
-  k.record.status = status_named(r.string_attribute(file, "status"), r);
-  k.record.stop_message = r.string_attribute(file, "stop_message");
-  k.record.stop_cause = cause_named(r.string_attribute(file, "stop_cause"), r);
-  k.record.wall_seconds = r.attribute<double>(file, "wall_seconds", H5T_NATIVE_DOUBLE);
-  k.record.steps_timed = r.attribute<long>(file, "steps_timed", H5T_NATIVE_LONG);
-  k.record.label = r.string_attribute(file, "label");
-  if (H5Lexists(file, "series", H5P_DEFAULT) <= 0) r.fail("series");
+  if (H5Lexists(file, "series", H5P_DEFAULT) <= 0) {
+    if (r.string_attribute(file, "format") == format_1) return k;  // format 1: no series
+    r.fail("series");
+  }
   Id series{H5Gopen2(file, "series", H5P_DEFAULT), H5Gclose};
   H5G_info_t info;
   H5Gget_info(series, &info);
@@ -224,8 +271,17 @@ Checkpoint read_checkpoint(const std::string& path) {
   return k;
 }
 
+bool slim_checkpoint(const std::string& path) {
+  const Checkpoint k = read_checkpoint(path);
+  if (!k.fluid_kept) return false;
+  write_file(path, k.scene_yaml, k.state, k.record, false);
+  return true;
+}
+
 scene::StartingState read_starting_state(const scene::Scene& s) {
   Checkpoint k = read_checkpoint(s.start.checkpoint);
+  if (!k.fluid_kept)
+    throw InputError("start checkpoint", s.start.checkpoint, "keeps no fluid (an ended run's, written without it): a scene starts from the fluid too");
   const scene::Scene from = scene::parse_scene(k.scene_yaml, s.start.checkpoint);
   scene::StartingState start;
   start.state = std::move(k.state);

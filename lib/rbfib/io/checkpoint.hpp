@@ -16,6 +16,10 @@
 //   attributes of /: format ("rbfib checkpoint 2"), steps, dt (s), level, allowing, status
 //   ("running", "finished" or "stopped"), stop_message, stop_cause, wall_seconds, steps_timed, label
 // Format 1 (no series, no run attributes) is read as a running run without series.
+// A run that has ended (finished or stopped) never steps again; its checkpoint may keep no fluid
+// arrays (/fluid with its attribute t only): its result is its series, its cells and points and
+// its clock, about a fiftieth of the file at the grids of Chapter 5 (write_checkpoint's
+// keep_fluid, slim_checkpoint). A running run's checkpoint always keeps them.
 // Written atomically: to PATH.tmp, flushed and fsynced, then renamed over PATH (and the
 // directory fsynced), so a kill at any moment leaves the previous checkpoint whole.
 #include "rbfib/core/error.hpp"
@@ -50,18 +54,35 @@ struct RunRecord {
 };
 
 /// Writes the run's state; on a split fluid a collective call (the whole state is gathered) whose
-/// process 0 writes the file, the same file one process writes.
+/// process 0 writes the file, the same file one process writes. keep_fluid false (allowed only
+/// for a run that has ended: InputError otherwise) leaves out the fluid's arrays.
 void write_checkpoint(const std::string& path, const std::string& scene_yaml, const sim::ImmersedBoundary& ib,
-                      const RunRecord& record = {});
+                      const RunRecord& record = {}, bool keep_fluid = true);
 
 struct Checkpoint {
   std::string scene_yaml;
-  sim::ImmersedBoundary::Carried state;
+  sim::ImmersedBoundary::Carried state;  ///< without fluid arrays when !fluid_kept
   RunRecord record;
+  bool fluid_kept = true;  ///< false: an ended run's checkpoint written without the fluid's arrays
 };
 
 /// Reads a checkpoint; throws InputError naming the file and what is missing or malformed.
 Checkpoint read_checkpoint(const std::string& path);
+
+/// What a checkpoint says of its run without its arrays or series (cheap on a large file): the
+/// scene text, the clock (t, step, dt, level) and the record's status, stop, wall time and label.
+struct CheckpointHeader {
+  std::string scene_yaml;
+  sim::Clock clock;
+  RunRecord record;  ///< series not read: empty
+  bool fluid_kept = true;
+};
+CheckpointHeader read_checkpoint_header(const std::string& path);
+
+/// Rewrites an ended run's checkpoint without its fluid's arrays (atomically; nothing to do when
+/// it has none); InputError for a running run's, whose fluid is what it continues from. Returns
+/// whether the file was rewritten.
+bool slim_checkpoint(const std::string& path);
 
 /// The state a scene starts from (scene.start.checkpoint): the checkpoint's state, the cell type
 /// of each of its batches and its grid (from the scene text it keeps).

@@ -104,6 +104,13 @@ void Run::start() {
   if (!options_.checkpoint.empty() && std::filesystem::exists(options_.checkpoint)) {
     io::Checkpoint k = io::read_checkpoint(options_.checkpoint);
     if (k.scene_yaml == source_) {
+      if (!k.fluid_kept) {  // an ended run (the reader allows no other): NaN of the grid's sizes in the fluid's place
+        const FluidState built = ib_.carried().fluid;
+        for (int a = 0; a < 3; ++a) k.state.fluid.u[a] = dvec(built.u[a].size(), NAN);
+        k.state.fluid.p = dvec(built.p.size(), NAN);
+        for (int j = 0; j < 2; ++j) k.state.fluid.phi[j] = dvec(built.phi[j].size(), NAN);
+        fluid_kept_ = false;
+      }
       ib_.restore(k.state);
       record_ = std::move(k.record);
       continued_ = true;
@@ -129,7 +136,8 @@ void Run::sample(const sim::IbStepReport* report) {
 
 void Run::checkpoint() {
   if (options_.checkpoint.empty()) return;
-  io::write_checkpoint(options_.checkpoint, source_, ib_, record_);
+  const bool keep_fluid = fluid_kept_ && (record_.status == RunStatus::running || options_.ended_keeps_fluid);
+  io::write_checkpoint(options_.checkpoint, source_, ib_, record_, keep_fluid);
   if (hooks_.checkpointed) hooks_.checkpointed(record_.series);
 }
 

@@ -49,6 +49,10 @@ struct Options {
   Cadence snapshot_every;               ///< snapshots (Hooks::snapshot): after these steps
   Cadence progress_every{0, 0, 30};     ///< progress lines (Hooks::progress)
   std::string label;                    ///< kept in the checkpoint of a fresh run (e.g. the code version)
+  /// Whether the checkpoint of a run that has ended (finished or stopped) keeps the fluid's arrays.
+  /// false: its series, cells, points and clock only (io/checkpoint.hpp), for runs whose result
+  /// those are (a study's finished runs, kept small); the `rbfib` command keeps the whole state.
+  bool ended_keeps_fluid = true;
   /// A split fluid (dist/): each process steps its part of a scene; the cadences and the sitting's
   /// end are agreed by all, process 0 writes the checkpoint. Null: one process.
   std::shared_ptr<const FluidDecomposition> parts;
@@ -124,6 +128,9 @@ class Run {
   SeriesSet& series() { return record_.series; }
   const Series& series(const std::string& name) const;
   bool continued() const { return continued_; }  ///< restored from its checkpoint
+  /// false: restored from an ended run's checkpoint that kept no fluid; the fluid then holds NaN
+  /// (a measure of it cannot pass for a result).
+  bool fluid_kept() const { return fluid_kept_; }
   const std::string& label() const { return record_.label; }  ///< the label of the sitting that began it
   Progress progress() const;
   /// Writes the checkpoint now (no-op without one).
@@ -139,6 +146,7 @@ class Run {
   sim::ImmersedBoundary ib_;
   io::RunRecord record_;
   bool continued_ = false;
+  bool fluid_kept_ = true;
   double sitting_seconds_ = 0;
   long sitting_steps_ = 0;
 };
