@@ -13,7 +13,8 @@
 namespace rbfib::study {
 
 RunProgress SceneRun::progress(double t_end) const {
-  return {finished, samples.empty() ? 0.0 : samples.back().at(0), t_end, steps, seconds_per_step(), stopped};
+  const double here = sitting_steps > 0 && sitting_seconds > 0 ? sitting_seconds / double(sitting_steps) : NAN;
+  return {finished, samples.empty() ? 0.0 : samples.back().at(0), t_end, steps, seconds_per_step(), stopped, here};
 }
 
 namespace {
@@ -58,6 +59,8 @@ SceneRun run_scene(const std::string& text, const std::string& tag, run::Cadence
   r.steps = p.clock.step;
   r.steps_timed = p.steps_timed;
   r.seconds = p.wall_seconds;
+  r.sitting_steps = p.sitting_steps;
+  r.sitting_seconds = p.sitting_seconds;
   r.stopped = p.stop_message;
   r.stop_cause = p.stop_cause;
   r.finished = p.ended();

@@ -39,6 +39,8 @@ struct SceneRun {
   long steps = 0;        ///< steps from t = 0 to the end (or to the failure)
   long steps_timed = 0;  ///< steps timed, over all sittings
   double seconds = 0;    ///< their wall time (s)
+  long sitting_steps = 0;        ///< steps taken in this sitting
+  double sitting_seconds = 0;    ///< their wall time (s)
   std::string stopped;   ///< the NumericalError's message when the run ended early
   std::optional<Cause> stop_cause;  ///< and its cause
   bool finished = false; ///< reached the scene's end (or stopped); false: the wall-time budget ran out

@@ -132,7 +132,8 @@ void record_run(Json& results, const std::string& id, const RunProgress& p) {
   r["seconds_per_step"] = std::isfinite(p.seconds_per_step) ? Json(p.seconds_per_step) : Json();
   const double mean_dt = p.steps > 0 ? p.t / double(p.steps) : NAN;
   r["mean_dt_ns"] = std::isfinite(mean_dt) ? Json(mean_dt / units::ns) : Json();
-  const double hours = p.finished ? 0.0 : (p.t_end - p.t) / mean_dt * p.seconds_per_step / 3600;
+  const double here = std::isfinite(p.seconds_per_step_here) ? p.seconds_per_step_here : p.seconds_per_step;
+  const double hours = p.finished ? 0.0 : (p.t_end - p.t) / mean_dt * here / 3600;
   r["hours_to_go"] = std::isfinite(hours) ? Json(hours) : Json();
   if (!p.stopped.empty()) r["stopped"] = p.stopped;
 }

@@ -67,12 +67,15 @@ struct RunProgress {
   double t = 0;                   ///< simulated time reached (s)
   double t_end = 0;               ///< the run's end (s)
   long steps = 0;                 ///< steps from t = 0
-  double seconds_per_step = NAN;  ///< wall time per step measured in this sitting (s)
+  double seconds_per_step = NAN;  ///< wall time per step over the run's sittings (s)
   std::string stopped;            ///< the numerical stop's message, if one ended the run
+  /// This sitting's wall time per step when it took steps (s): the hours to go follow it, the
+  /// rate of the machine and load the run is on now. NaN: seconds_per_step.
+  double seconds_per_step_here = NAN;
 };
 
 /// results["runs"][id]: finished, progress (t / t_end), the simulated time as text, steps, s per
-/// step, the mean step (ns) and the hours to go here at that rate (0 when finished).
+/// step, the mean step (ns) and the hours to go here at this sitting's rate (0 when finished).
 void record_run(Json& results, const std::string& id, const RunProgress& p);
 
 /// Prints "[name] message" to stdout, flushed (progress on long runs).

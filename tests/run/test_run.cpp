@@ -267,5 +267,20 @@ TEST(RunLoop, SlimmingAFinishedRunsCheckpointKeepsAllButItsFluid) {
   for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], b[k]) << k;
 }
 
+TEST(RunLoop, HoursToGoFollowThisSittingsRateWhenItTookSteps) {
+  Progress p;
+  p.clock.t = 1e-3, p.clock.step = 1000;  // mean step 1 us: 1,000 steps to t_end
+  p.t_end = 2e-3;
+  p.wall_seconds = 1000, p.steps_timed = 1000;  // 1 s per step over the sittings
+  EXPECT_NEAR(p.hours_to_go(), 1000 * 1.0 / 3600, 1e-12);
+  p.sitting_seconds = 60, p.sitting_steps = 20;  // 3 s per step on the machine the run is on now
+  EXPECT_DOUBLE_EQ(p.seconds_per_step(), 1.0);
+  EXPECT_DOUBLE_EQ(p.seconds_per_step_here(), 3.0);
+  EXPECT_NEAR(p.hours_to_go(), 1000 * 3.0 / 3600, 1e-12);
+  EXPECT_NE(p.describe().find("0.833 h to go"), std::string::npos) << p.describe();
+  p.status = RunStatus::finished;
+  EXPECT_EQ(p.hours_to_go(), 0);
+}
+
 }  // namespace
 }  // namespace rbfib::run

@@ -47,7 +47,7 @@ class Due {
 double Progress::hours_to_go() const {
   if (ended()) return 0;
   const double t = clock.t, mean_dt = clock.step > 0 ? t / double(clock.step) : clock.dt;
-  const double h = (t_end - t) / mean_dt * seconds_per_step() / 3600;
+  const double h = (t_end - t) / mean_dt * seconds_per_step_here() / 3600;
   return std::isfinite(h) ? std::max(0.0, h) : NAN;
 }
 

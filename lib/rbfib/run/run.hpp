@@ -71,7 +71,12 @@ struct Progress {
   std::optional<Cause> stop_cause;
   bool ended() const { return status != RunStatus::running; }
   double seconds_per_step() const { return steps_timed > 0 ? wall_seconds / double(steps_timed) : NAN; }
-  /// Hours to the end at the mean step and the time per step so far (0 once ended; NaN unknown).
+  /// This sitting's time per step when it took steps, else seconds_per_step(): the rate of the
+  /// machine and load the run is on now (sittings on shared machines differ by several times).
+  double seconds_per_step_here() const {
+    return sitting_steps > 0 && sitting_seconds > 0 ? sitting_seconds / double(sitting_steps) : seconds_per_step();
+  }
+  /// Hours to the end at the mean step so far and seconds_per_step_here() (0 once ended; NaN unknown).
   double hours_to_go() const;
   /// "t = 1.2 of 5 ms (24%), step 1200, 3.1 steps/s, mean dt 1 us, 0.4 h to go", in the units
   /// that suit the run's end.
