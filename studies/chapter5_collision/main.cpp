@@ -101,7 +101,7 @@ Outcome run_orientation(const Orientation& o, const Setup& s, double figure_time
   const std::string text = scene::to_yaml(collision_scene(o, s, kFict * A0),
                                           "chapter5_collision: two red cells pushed together, Fig. 5.3 (" + o.id + ": " + o.what + ")");
   std::ofstream(dir + "/scene.yaml") << text;
-  if (saved && io::read_checkpoint(checkpoint).scene_yaml != text)
+  if (saved && io::read_checkpoint_header(checkpoint).scene_yaml != text)
     throw InputError(checkpoint, "its scene", "differs from this driver's scene for " + who + ": remove " + dir + " to start afresh");
   if (resumable && !saved && sitting.remaining() <= 0) {
     st::log(opt, who + ": not begun (this sitting's time is spent)");
@@ -109,6 +109,7 @@ Outcome run_orientation(const Orientation& o, const Setup& s, double figure_time
   }
   run::Options ro;
   ro.t_end = s.t_end;
+  ro.ended_keeps_fluid = false;  // an ended run never steps again: its checkpoint keeps cells, series and clock
   if (resumable) ro.checkpoint = checkpoint, ro.sitting = std::max(0.0, sitting.remaining());
   ro.checkpoint_every = {s.checkpoint_every, 0, 0};
   ro.sample_every = {s.measure_every, 0, 0};
