@@ -49,6 +49,15 @@ Hooks energy_hooks() {
   return h;
 }
 
+/// Options for a two-step run of sphere_scene("0.4 us", "0.8 us") kept in a fresh temp file.
+Options two_steps_kept_in(const std::string& name) {
+  Options o;
+  o.t_end = 0.8 * units::us;
+  o.checkpoint = temp_path(name);
+  std::filesystem::remove(o.checkpoint);
+  return o;
+}
+
 TEST(RunLoop, TwoSittingsEqualOneRunBitForBitWithTheirSeries) {
   const std::string text = sphere_scene();
   Options o;
@@ -90,10 +99,7 @@ TEST(RunLoop, TwoSittingsEqualOneRunBitForBitWithTheirSeries) {
 
 TEST(RunLoop, AFinishedRunIsACheckpointMarkedFinishedAndIsNotSteppedAgain) {
   const std::string text = sphere_scene("0.4 us", "0.8 us");
-  Options o;
-  o.t_end = 0.8 * units::us;
-  o.checkpoint = temp_path("finished.h5");
-  std::filesystem::remove(o.checkpoint);
+  Options o = two_steps_kept_in("finished.h5");
   run::Run(text, "sphere", o, energy_hooks()).evolve();
   EXPECT_EQ(io::read_checkpoint(o.checkpoint).record.status, RunStatus::finished);
   run::Run again(text, "sphere", o, energy_hooks());
@@ -202,11 +208,8 @@ TEST(RunLoop, SeriesOfAnyRowWidthSurviveTheCheckpoint) {
 
 TEST(RunLoop, AnEndedRunKeptWithoutItsFluidAnswersAsBeforeAndItsFluidReadsNaN) {
   const std::string text = sphere_scene("0.4 us", "0.8 us");
-  Options o;
-  o.t_end = 0.8 * units::us;
-  o.checkpoint = temp_path("slim.h5");
+  Options o = two_steps_kept_in("slim.h5");
   o.ended_keeps_fluid = false;
-  std::filesystem::remove(o.checkpoint);
   // A sitting that ends before the run does keeps the fluid: the run continues from it.
   o.until = 0.4 * units::us;
   run::Run(text, "sphere", o, energy_hooks()).evolve();
@@ -242,10 +245,7 @@ TEST(RunLoop, AnEndedRunKeptWithoutItsFluidAnswersAsBeforeAndItsFluidReadsNaN) {
 
 TEST(RunLoop, SlimmingAFinishedRunsCheckpointKeepsAllButItsFluid) {
   const std::string text = sphere_scene("0.4 us", "0.8 us");
-  Options o;
-  o.t_end = 0.8 * units::us;
-  o.checkpoint = temp_path("to_slim.h5");
-  std::filesystem::remove(o.checkpoint);
+  Options o = two_steps_kept_in("to_slim.h5");
   run::Run(text, "sphere", o, energy_hooks()).evolve();
   const io::Checkpoint whole = io::read_checkpoint(o.checkpoint);
   ASSERT_TRUE(whole.fluid_kept);
