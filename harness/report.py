@@ -176,7 +176,8 @@ def render(meta, ref, results, outcome, out_dir, run_info):
         L += ["## The paper's tables beside ours", ""]
         for pt in ref["paper_tables"]:
             L += [f"### {pt['source']} (ours: `{pt['id']}`)", "", paper_beside_ours(pt, tabs.get(pt["id"])), ""]
-    figs = ref.get("figures", []) or []
+    # A figure with `scales: [...]` is drawn in the reports of those scales only.
+    figs = [f for f in ref.get("figures", []) or [] if f.get("scales") is None or results.get("scale") in f["scales"]]
     if figs:
         L += ["## Figures", ""]
         for f in figs:

@@ -183,7 +183,7 @@ class BadInput(unittest.TestCase):
         finally:
             shutil.rmtree(tmp)
 
-    def fake_study(self, tmp, checks_yaml, values):
+    def fake_study(self, tmp, checks_yaml, values, figures_yaml=""):
         os.makedirs(os.path.join(tmp, "studies", "fake"), exist_ok=True)
         os.makedirs(os.path.join(tmp, "reference"), exist_ok=True)
         os.makedirs(os.path.join(tmp, "runs", "fake", "quick"), exist_ok=True)
@@ -192,7 +192,7 @@ class BadInput(unittest.TestCase):
         with open(os.path.join(tmp, "studies", "fake", "main.cpp"), "w") as f:
             f.write("int main() {}\n")
         with open(os.path.join(tmp, "reference", "fake.yaml"), "w") as f:
-            f.write("study: fake\nsource: x\nchecks:\n" + checks_yaml + "figures:\n  - {id: speed_vs_error, table: t, x: s, y: e}\n")
+            f.write("study: fake\nsource: x\nchecks:\n" + checks_yaml + "figures:\n  - {id: speed_vs_error, table: t, x: s, y: e}\n" + figures_yaml)
         with open(os.path.join(tmp, "runs", "fake", "quick", "results.json"), "w") as f:
             json.dump({"study": "fake", "scale": "quick", "values": values,
                        "tables": {"t": {"columns": ["s", "e"], "units": ["s", ""], "rows": [[1.0, 0.1], [2.0, 0.05]]}}}, f)
@@ -214,6 +214,21 @@ class BadInput(unittest.TestCase):
             with open(os.path.join(tmp, "reports", "fake", "summary.json")) as f:
                 summary = json.load(f)
             self.assertEqual((summary["passed"], summary["not_run"]), (1, 0))
+        finally:
+            shutil.rmtree(tmp)
+
+    def test_a_figure_of_the_other_scale_is_not_drawn(self):
+        tmp = tempfile.mkdtemp()
+        try:
+            here = "  - {id: here, kind: bound, source: y, value: w, max: 1}\n"
+            full_only = "  - {id: fine_grid, table: t, x: s, y: e, scales: [full]}\n"
+            proc = harness(*self.fake_study(tmp, here, {"w": 0.5}, full_only), root=tmp)
+            self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
+            with open(os.path.join(tmp, "reports", "fake", "README.md")) as f:
+                text = f.read()
+            self.assertIn("(speed_vs_error.png)", text)
+            self.assertNotIn("fine_grid", text)
+            self.assertFalse(os.path.exists(os.path.join(tmp, "reports", "fake", "fine_grid.png")))
         finally:
             shutil.rmtree(tmp)
 
