@@ -49,7 +49,7 @@ def parse(argv):
     k.add_argument("target", help="a study name, a chapter or 'all'")
     k.add_argument("--scale", default="full", help="full (default) or quick")
     k.add_argument("--out", default=os.path.join(ROOT, "runs"), help="where run directories are")
-    k.add_argument("--max-mib", type=float, default=32.0, help="checkpoints larger than this (MiB) are not kept (default 32)")
+    k.add_argument("--max-mib", type=float, default=5.0, help="checkpoints larger than this (MiB) are not kept (default 5)")
     sub.add_parser("list", help="list the studies")
     a = p.parse_args(argv)
     if a.command in ("run", "keep") and a.scale not in ("quick", "full"):
@@ -112,11 +112,12 @@ def checkpoints(folder):
     return sorted(out)
 
 
-def keep_study(name, scale, runs, max_mib=32.0):
+def keep_study(name, scale, runs, max_mib=5.0):
     """Copies the checkpoints of runs/<name>/<scale> into kept/<name>/<scale> (replacing older copies).
 
     A checkpoint larger than max_mib is not kept (the repository is no place for a grid of the seed's
-    size): it is named, and its run continues only where it was written."""
+    size): it is named, an older kept copy of it is removed (the run has moved on from it), and its
+    run continues only where it was written."""
     src, dst = os.path.join(runs, name, scale), os.path.join(KEPT, name, scale)
     files = checkpoints(src)
     if not files:
@@ -126,6 +127,8 @@ def keep_study(name, scale, runs, max_mib=32.0):
     for rel in large:
         print(f"harness: {name}: not kept: {rel} ({os.path.getsize(os.path.join(src, rel)) / 2**20:.0f} MiB, "
               f"above --max-mib {max_mib:g}); its run continues only on this machine")
+        if os.path.exists(os.path.join(dst, rel)):
+            os.remove(os.path.join(dst, rel))
     files = [rel for rel in files if rel not in large]
     # Only the checkpoints that differ from their kept copies are copied: each one committed adds its
     # whole size to the repository's history, so a run's checkpoint is best kept once a sitting.

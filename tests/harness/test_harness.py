@@ -315,6 +315,10 @@ class KeptCheckpoints(unittest.TestCase):
                 self.assertEqual(cli.keep_study("study_x", "full", runs, max_mib=0.5),  # the 1 MiB checkpoint is not kept
                                  [os.path.join("grid_a", "checkpoint.h5")])
                 self.assertEqual(cli.keep_study("study_x", "full", runs, max_mib=0.5), [])  # unchanged: nothing copied
+                with open(os.path.join(kept, "study_x", "full", "grid_a", "large.h5"), "w") as f:
+                    f.write("small once")  # kept when it was small; its run has grown past the limit since
+                self.assertEqual(cli.keep_study("study_x", "full", runs, max_mib=0.5), [])
+                self.assertFalse(os.path.exists(os.path.join(kept, "study_x", "full", "grid_a", "large.h5")))
                 self.assertEqual(cli.checkpoints(os.path.join(kept, "study_x", "full")), [os.path.join("grid_a", "checkpoint.h5")])
                 fresh = os.path.join(tmp, "fresh")
                 cli.continue_from_kept("study_x", "full", fresh)
