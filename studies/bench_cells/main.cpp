@@ -6,7 +6,9 @@
 // products, bending (its data-site products, H kernel and the jets of H - H'), the site kernels
 // and the reductions; the flop rate of the products against a square DGEMM measured in the same
 // run (this machine's ceiling for dense products); the memory held by each type's operators;
-// the time per red cell as the batch grows (N = 1, 2, 4, 8); and, as the error of this speed,
+// the time per red cell as the batch grows (N = 1, 2, 4, 8); the red cells' product shape against
+// the square GEMM on one thread and on the team, in double and single precision, with the rows
+// split among the threads or left to the BLAS's threads; and, as the error of this speed,
 // the largest difference between the batched forces and the per-cell host path.
 //
 // Sizes: full scale, red cells 2,500 data / 10,000 sample sites (Secs. 5.1.3, 5.2); quick scale
@@ -172,6 +174,62 @@ void measure(const st::Options& opt, Json& calls, const std::shared_ptr<const Ce
   }
 }
 
+/// Flop rate of C (m x n) = A (m x k) B (k x n) in precision T through linalg/dense on `threads`
+/// threads, tall products split by rows among them or left to the BLAS (median of repeats).
+template <class T>
+double product_rate(index_t m, index_t k, index_t n, int threads, bool split, int repeats) {
+  std::vector<T> a(static_cast<std::size_t>(m * k)), b(static_cast<std::size_t>(k * n));
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = T(std::sin(0.001 * double(i)));
+  for (std::size_t i = 0; i < b.size(); ++i) b[i] = T(std::cos(0.003 * double(i)));
+  const auto A = linalg::Matrix<T>::from_host(m, k, a.data()), B = linalg::Matrix<T>::from_host(k, n, b.data());
+  linalg::Matrix<T> C(m, n);
+  const int team = omp_get_max_threads();
+  const bool was = linalg::rows_per_thread();
+  omp_set_num_threads(threads);
+  linalg::set_rows_per_thread(split);
+  auto call = [&] { linalg::gemm(linalg::Op::none, linalg::Op::none, T(1), A.view(), B.view(), T(0), C.view()); };
+  call();
+  const double t = st::median_seconds(repeats, [&] {
+    call();
+    synchronize();
+  });
+  linalg::set_rows_per_thread(was);
+  omp_set_num_threads(team);
+  return 2.0 * double(m) * double(k) * double(n) / t;
+}
+
+/// The products table: a square DGEMM and the red cells' product (one sample-site operator of
+/// n_s x n_d on the 56 columns of 8 cells) in double and single precision, on one thread and on
+/// the whole team, tall products split by rows among the threads or left to the BLAS.
+void measure_products(const st::Options& opt, Json& results, index_t ns, index_t nd, index_t square, int repeats) {
+  Json T = st::table({"product", "precision", "threads", "threading", "gflops"}, {"", "", "", "", "GFlop/s"});
+  const int team = omp_get_max_threads();
+  Json& V = results["values"];
+  for (const bool single : {false, true}) {
+    const std::string prec = single ? "single" : "double";
+    for (int threads = 1; threads <= team; threads *= 2) {
+      const double sq = single ? product_rate<float>(square, square, square, threads, true, repeats)
+                               : product_rate<double>(square, square, square, threads, true, repeats);
+      T["rows"].push(st::row({"square " + to_text(square), prec, double(threads), "BLAS", sq / 1e9}));
+      V[(single ? "sgemm_gflops_" : "dgemm_gflops_") + to_text(threads) + "_threads"] = sq / 1e9;
+      for (const bool split : {false, true}) {
+        if (split && threads == 1) continue;
+        const double r = single ? product_rate<float>(ns, nd, 56, threads, split, repeats)
+                                : product_rate<double>(ns, nd, 56, threads, split, repeats);
+        T["rows"].push(st::row({to_text(ns) + " x " + to_text(nd) + " x 56", prec, double(threads), split ? "rows per thread" : "BLAS",
+                                r / 1e9}));
+        if (threads == team && team > 1)
+          V[std::string(single ? "tall_sgemm" : "tall_dgemm") + (split ? "_rows_per_thread" : "_blas_threads") + "_fraction_of_square"] =
+              r / sq;
+        st::log(opt, "1. " + prec + " " + to_text(ns) + " x " + to_text(nd) + " x 56 on " + to_text(threads) + " thread(s), " +
+                         (split ? "rows per thread: " : "BLAS threads: ") + to_text(r / 1e9) + " GFlop/s (square " +
+                         to_text(sq / 1e9) + ")");
+      }
+    }
+  }
+  results["tables"]["products"] = T;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -195,6 +253,7 @@ int main(int argc, char** argv) {
     const st::Ceiling c = st::measure_ceiling(results, full ? 3000 : 2000, repeats);
     st::log(opt, "1. " + linalg::dense_backend_name() + ", " + to_text(omp_get_max_threads()) + " threads: square DGEMM at " +
                      to_text(c.dgemm_flops / 1e9) + " GFlop/s, triad " + to_text(c.triad_bytes_per_s / 1e9) + " GB/s");
+    measure_products(opt, results, rbc_ns, rbc_nd, full ? 3000 : 2000, repeats);
 
     // ---- 2. Cell types -----------------------------------------------------------------------
     Json types = st::table({"type", "n_data", "n_sample", "build_seconds", "operator_MiB", "forces"}, {"", "", "", "s", "MiB", ""});
@@ -209,8 +268,22 @@ int main(int argc, char** argv) {
     Load load;
     for (index_t n : {index_t(1), index_t(2), index_t(4)}) measure(opt, calls, rbc, red_cell_placements(n), repeats, c);
     measure(opt, calls, rbc, red_cell_placements(red_cells), repeats, c, &load);
+    const double red_cells_seconds = load.seconds;
     measure(opt, calls, plt, platelet_placements(), repeats, c, &load);
     Json& V = results["values"];
+    if (omp_get_max_threads() > 1) {  // the red cells' call with the products left to the BLAS's threads
+      linalg::set_rows_per_thread(false);
+      Batch b(rbc, red_cell_placements(red_cells));
+      set_velocities(b);
+      double total = 0;
+      const ForceTimings t = st::median_force_timings(b, repeats, total);
+      linalg::set_rows_per_thread(true);
+      V["red_cells_seconds_per_call_blas_threads"] = total;
+      V["red_cells_product_seconds_blas_threads"] = t.products();
+      V["red_cells_rows_per_thread_speedup"] = total / red_cells_seconds;
+      st::log(opt, "3. red cell x 8 with the BLAS's own threads: " + to_text(total * 1e3) + " ms per call (products " +
+                       to_text(t.products() * 1e3) + " ms)");
+    }
     V["load_seconds_per_call"] = load.seconds;
     V["load_kernel_share"] = load.kernel_seconds / load.seconds;
     V["load_product_fraction_of_dgemm"] = load.product_flops / load.product_seconds / c.dgemm_flops;

@@ -311,3 +311,43 @@ TEST(Dense, SingularMatrixIsNamed) {
 
 }  // namespace
 }  // namespace rbfib::linalg
+
+#if !defined(RBFIB_BACKEND_CUDA)
+#include <omp.h>
+
+namespace rbfib::linalg {
+// A tall operator times a few columns is split by rows among the team (one one-thread GEMM per
+// thread): the products agree with the BLAS's own threading to rounding, in strided batches and
+// on blocks whose rows start off a multiple of 8, and with teams that split the rows unevenly.
+TEST(Dense, TallProductsSplitByRowsEqualTheBlasThreads) {
+  const index_t m = 1003, k = 97, n = 7, count = 3;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<double> a(static_cast<std::size_t>(count * m * k)), b(static_cast<std::size_t>(k * n));
+  for (double& x : a) x = u(rng);
+  for (double& x : b) x = u(rng);
+  const linalg::DeviceMatrix A = linalg::DeviceMatrix::from_host(count * m, k, a.data()), B = linalg::DeviceMatrix::from_host(k, n, b.data());
+  auto product = [&](bool split, int threads) {
+    linalg::DeviceMatrix C(count * m, n);
+    const int team = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    linalg::set_rows_per_thread(split);
+    // rows 3 .. 3 + m - 4 of each of the count blocks of A (stride m), into the blocks of C
+    linalg::gemm_strided_batched(linalg::Op::none, linalg::Op::none, 1.0, A.view().block(3, 0, m - 4, k), m, B.view(), 0, 0.0,
+                                 C.view().block(0, 0, m - 4, n), m, count);
+    linalg::set_rows_per_thread(true);
+    omp_set_num_threads(team);
+    return C.to_host();
+  };
+  const std::vector<double> ref = product(false, 1);
+  for (int threads : {2, 3}) {
+    const std::vector<double> got = product(true, threads);
+    double diff = 0, scale = 0;
+    for (std::size_t i = 0; i < ref.size(); ++i) diff = std::max(diff, std::abs(got[i] - ref[i])), scale = std::max(scale, std::abs(ref[i]));
+    EXPECT_LE(diff, 1e-14 * scale) << threads << " threads";
+    EXPECT_GT(scale, 1.0);
+  }
+  EXPECT_TRUE(linalg::rows_per_thread());
+}
+}  // namespace rbfib::linalg
+#endif

@@ -199,12 +199,12 @@ void compute_forces(const Batch& batch, linalg::ConstMatrixView state, CellForce
   //    products with few columns (a cell or two) are bound by reading the operators.
   const index_t both = bending ? cols + N : cols;  // the columns of the sample sites' pass
   if (bending) {
-    w.data_values.resize(nd, 3 * N);
+    // H needs the derivatives of X alone (the geometry reads no value): no value product.
     w.data_derivatives.resize(surface::derivative_count * nd, 3 * N);
-    surface::apply_operators_rows(type.operators(), state.block(0, 0, nd, 3 * N), ns, nd, w.data_values.view(),
+    surface::apply_operators_rows(type.operators(), state.block(0, 0, nd, 3 * N), ns, nd, linalg::MatrixView{},
                                   w.data_derivatives.view(), w.ops);
     if (timings) timings->bending_products = seconds_since(t0);
-    const JetView xd{ptr(w.data_values.storage()), nd, ptr(w.data_derivatives.storage()), surface::derivative_count * nd, nd, N};
+    const JetView xd{nullptr, nd, ptr(w.data_derivatives.storage()), surface::derivative_count * nd, nd, N};
     w.fields.resize(nd, both);
     linalg::copy(state.block(0, 0, nd, cols), w.fields.view().block(0, 0, nd, cols));
     w.data_status.resize(static_cast<std::size_t>(N * nd));
@@ -224,9 +224,11 @@ void compute_forces(const Batch& batch, linalg::ConstMatrixView state, CellForce
   }
 
   // 2. Jets at the sample sites: value and derivatives of X (and U), and of H - H' with bending,
-  //    by one product for the values and one (a batch of five) for the derivatives.
+  //    by one product for the values and one (a batch of five) for the derivatives. Only the
+  //    positions' values are read (where the forces act, the volume sums): the velocities' and
+  //    H - H''s values are not computed.
   const index_t ldd = surface::derivative_count * ns;
-  w.values.resize(ns, both);
+  w.values.resize(ns, 3 * N);
   w.derivatives.resize(ldd, both);
   surface::apply_operators_rows(type.operators(), bending ? linalg::ConstMatrixView(w.fields.view()) : state.block(0, 0, nd, cols), 0, ns,
                                 w.values.view(), w.derivatives.view(), w.ops);
@@ -235,7 +237,7 @@ void compute_forces(const Batch& batch, linalg::ConstMatrixView state, CellForce
   const double* V = ptr(w.values.storage());
   const double* D = ptr(w.derivatives.storage());
   const JetView xj{V, ns, D, ldd, ns, N};
-  const JetView uj = dissipation ? JetView{V + 3 * N * ns, ns, D + 3 * N * ldd, ldd, ns, N} : JetView{};
+  const JetView uj = dissipation ? JetView{nullptr, ns, D + 3 * N * ldd, ldd, ns, N} : JetView{};
   const JetView dhj = bending ? JetView{nullptr, ns, D + cols * ldd, ldd, ns, N} : JetView{};
   if (timings) timings->jets = seconds_since(t0);
 

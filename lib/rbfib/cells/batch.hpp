@@ -105,7 +105,7 @@ class Batch {
   /// Workspace of the force call, reused between calls (no allocation after the first).
   struct Workspace {
     linalg::DeviceMatrix values, derivatives;            // jets at the sample sites
-    linalg::DeviceMatrix data_values, data_derivatives;  // jets of X at the data sites (bending)
+    linalg::DeviceMatrix data_derivatives;  // derivatives of X at the data sites (bending)
     linalg::DeviceMatrix fields;                         // [X U (H - H')] at the data sites (bending)
     surface::OperatorWorkspace ops;
     device_vector<int> status, data_status;

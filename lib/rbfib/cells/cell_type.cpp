@@ -168,13 +168,14 @@ ProductFlops product_flops(const CellTypeSpec& spec, index_t N) {
   const double nd = double(spec.data_sites.size()), ns = double(spec.sample_sites.size());
   const double nj = ns + (spec.model.bending() ? nd : 0.0);  // the operators' rows: n_s, and n_d with bending
   ProductFlops f;
-  const double cols = (spec.model.dissipation() ? 6.0 : 3.0) * double(N);
-  // the sample sites' rows on X (and U); the data sites' rows (bending) on X alone
-  f.jets = 2.0 * 6.0 * ns * nd * cols + 2.0 * 6.0 * (nj - ns) * nd * 3.0 * double(N);
+  const double X = 3.0 * double(N), U = spec.model.dissipation() ? 3.0 * double(N) : 0.0;
+  // the sample sites' rows: value and derivatives of X, derivatives of U; the data sites' rows
+  // (bending): derivatives of X
+  f.jets = 2.0 * ns * nd * (6.0 * X + 5.0 * U) + 2.0 * 5.0 * (nj - ns) * nd * X;
   const double word = spec.single_precision_products ? 4.0 : 8.0;  // bytes per operator entry
-  f.bytes = word * 6.0 * nj * nd;
-  if (spec.model.bending())  // H - H' rides through the sample sites' pass: its value and five derivatives
-    f.bending = 2.0 * 6.0 * ns * nd * double(N);
+  f.bytes = word * (6.0 * ns + 5.0 * (nj - ns)) * nd;
+  if (spec.model.bending())  // H - H' rides through the sample sites' pass: its five derivatives
+    f.bending = 2.0 * 5.0 * ns * nd * double(N);
   return f;
 }
 

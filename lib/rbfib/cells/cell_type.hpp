@@ -63,10 +63,11 @@ struct CellTypeSpec {
 };
 
 /// Flops of the dense products of one force call for N cells of a type, as performed: the jets
-/// of positions (and, with dissipation, velocities) at the sample sites and, with bending, of the
-/// positions at the data sites (2 x 6 n_s n_d x 3 [6] N + [2 x 6 n_d n_d x 3 N]), and the
-/// value and derivatives of H - H' at the sample sites, in the same pass (2 x 6 n_s n_d x N); and
-/// the operator bytes they stream (each operator row is read once).
+/// of positions at the sample sites and, with dissipation, the five derivatives of the velocities
+/// there (2 x 6 n_s n_d x 3N [+ 2 x 5 n_s n_d x 3N]); with bending, the five derivatives of the
+/// positions at the data sites (2 x 5 n_d n_d x 3N) and of H - H' at the sample sites, in the same
+/// pass (2 x 5 n_s n_d x N): the values nothing reads are not computed; and the operator bytes
+/// they stream (each operator row is read once).
 struct ProductFlops {
   double jets = 0, bending = 0;
   double bytes = 0;

@@ -75,9 +75,18 @@ void gemm(Op op_a, Op op_b, double alpha, ConstMatrixView A, ConstMatrixView B, 
 
 /// count independent products C_k = alpha op(A_k) op(B_k) + beta C_k, where X_k starts at
 /// X.data + k * stride_X (the same shapes and leading dimensions for all k): cuBLAS's
-/// gemmStridedBatched; on the CPU one dgemm per k (each threaded by OpenBLAS).
+/// gemmStridedBatched; on the CPU one dgemm per k. On the CPU a tall op(A) = A times a few columns
+/// (at least 4 times as many rows as C has columns: the surfaces' jets) is split by rows among
+/// the OpenMP team, one one-thread dgemm per thread and product (see rows_per_thread); any other
+/// shape is threaded by OpenBLAS.
 void gemm_strided_batched(Op op_a, Op op_b, double alpha, ConstMatrixView A, index_t stride_a, ConstMatrixView B,
                           index_t stride_b, double beta, MatrixView C, index_t stride_c, index_t count);
+
+/// Whether tall products are split by rows among the team (true, the default) or left to the
+/// BLAS's own threading (false): a switch for the benchmarks that compare the two (bench_cells);
+/// both give the same products to rounding. Without effect on the CUDA backend.
+void set_rows_per_thread(bool on);
+bool rows_per_thread();
 
 /// The same in single precision (BLAS sgemm; cuBLAS Sgemm): products with an operator stored in
 /// float (surface/operators.hpp), accumulated in float by the BLAS kernels.

@@ -32,11 +32,13 @@ struct JetView {
 
   RBFIB_HD double value(index_t col, index_t i) const { return v[i + col * ldv]; }
   RBFIB_HD double derivative(int q, index_t col, index_t i) const { return d[q * n + i + col * ldd]; }
+  /// The jet of cell c at site i; its value is 0 where v is null (only derivatives computed: the
+  /// geometry, the elastic and the dissipative forces read derivatives alone).
   RBFIB_HD Jet jet(index_t c, index_t i) const {
     Jet j;
     for (int a = 0; a < 3; ++a) {
       const index_t col = a * cells + c;
-      j.x[a] = value(col, i);
+      j.x[a] = v ? value(col, i) : 0.0;
       j.xl[a] = derivative(0, col, i);
       j.xt[a] = derivative(1, col, i);
       j.xll[a] = derivative(2, col, i);

@@ -112,8 +112,8 @@ void single_operand(const SurfaceOperators& ops, linalg::ConstMatrixView F, Oper
 }
 
 /// Single precision, after single_operand: the operator rows [row0, row0 + rows) on the first
-/// `cols` columns, in float; value = V in + s (when value.rows > 0) and derivative q into rows
-/// q stride + i of derivatives (when derivatives.rows > 0).
+/// `cols` columns, in float; value = V in + s on the first value.cols of them (when value.rows > 0)
+/// and derivative q into rows q stride + i of derivatives (when derivatives.rows > 0).
 void single_products(const SurfaceOperators& ops, index_t row0, index_t rows, index_t cols, linalg::MatrixView value,
                      linalg::MatrixView derivatives, index_t stride, OperatorWorkspace& work) {
   using linalg::Op;
@@ -121,13 +121,15 @@ void single_products(const SurfaceOperators& ops, index_t row0, index_t rows, in
   const linalg::ConstFloatView in = work.in32.view().block(0, 0, k, cols);
   if (rows == 0 || cols == 0) return;
   if (value.rows > 0) {
-    work.out32.resize(rows, cols);
-    linalg::gemm(Op::none, Op::none, 1.0f, ops.value32.view().block(row0, 0, rows, k), in, 0.0f, work.out32.view());
+    const index_t vcols = value.cols;
+    work.out32.resize(rows, vcols);
+    linalg::gemm(Op::none, Op::none, 1.0f, ops.value32.view().block(row0, 0, rows, k), in.block(0, 0, k, vcols), 0.0f,
+                 work.out32.view());
     const float* o = ptr(work.out32.storage());
     const double* s = ptr(work.shift);
     double* v = value.data;
     const index_t ldv = value.ld;
-    for_each_index(rows * cols, [=] RBFIB_HD (index_t e) {
+    for_each_index(rows * vcols, [=] RBFIB_HD (index_t e) {
       const index_t i = e % rows, j = e / rows;
       v[i + j * ldv] = double(o[e]) + s[j];
     });
@@ -175,6 +177,8 @@ void apply_operators_rows(const SurfaceOperators& ops, linalg::ConstMatrixView F
           "[" + to_text(row0) + ", " + to_text(row0 + rows) + ")", "must lie in [0, " + to_text(ns) + ")");
   require(derivatives.rows == 0 || derivatives.rows == derivative_count * rows, "surface operators: derivative rows",
           derivatives.rows, "must be 5 x " + to_text(rows));
+  require(value.rows == 0 || value.cols <= F.cols, "surface operators: value columns", value.cols,
+          "must be at most the fields' " + to_text(F.cols));
   if (ops.single_precision()) {
     single_operand(ops, F, work);
     single_products(ops, row0, rows, F.cols, value, derivatives, rows, work);
@@ -182,7 +186,9 @@ void apply_operators_rows(const SurfaceOperators& ops, linalg::ConstMatrixView F
   }
   const linalg::ConstMatrixView in = operand(ops, F, work);
   const linalg::ConstMatrixView V = ops.value.view(), D = ops.derivatives.view();
-  if (value.rows > 0) linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, V.block(row0, 0, rows, V.cols), in, 0.0, value);
+  if (value.rows > 0)
+    linalg::gemm(linalg::Op::none, linalg::Op::none, 1.0, V.block(row0, 0, rows, V.cols), in.block(0, 0, in.rows, value.cols), 0.0,
+                 value);
   if (derivatives.rows > 0)  // derivative q: operator rows q ns + row0 .. , output rows q rows ..
     linalg::gemm_strided_batched(linalg::Op::none, linalg::Op::none, 1.0, D.block(row0, 0, rows, D.cols), ns, in, 0, 0.0,
                                  derivatives.block(0, 0, rows, derivatives.cols), rows, derivative_count);

@@ -99,7 +99,8 @@ struct OperatorWorkspace {
 void apply_operators(const SurfaceOperators& ops, linalg::ConstMatrixView F, linalg::MatrixView value,
                      linalg::MatrixView derivatives, OperatorWorkspace& work);
 
-/// The same for the sample sites [row0, row0 + rows) only: value is rows x cols and derivatives
+/// The same for the sample sites [row0, row0 + rows) only: value is rows x c (c <= cols: the
+/// values of F's first c columns alone, for fields whose values nothing reads) and derivatives
 /// 5 rows x cols (derivative q of site row0 + i in row q rows + i), by one product for the values
 /// and one strided batch of five for the derivatives.
 void apply_operators_rows(const SurfaceOperators& ops, linalg::ConstMatrixView F, index_t row0, index_t rows,
