@@ -102,6 +102,7 @@ void write_file(const std::string& path, const std::string& scene_yaml, const si
     h5::attribute(file, "dt", c.clock.dt);
     h5::attribute(file, "level", c.clock.level);
     h5::attribute(file, "allowing", c.clock.allowing);
+    h5::attribute(file, "cap", c.clock.cap);
     h5::attribute(file, "status", std::string(to_string(record.status)));
     h5::attribute(file, "stop_message", record.stop_message);
     h5::attribute(file, "stop_cause", std::string(to_string(record.stop_cause)));
@@ -164,6 +165,8 @@ CheckpointHeader read_header(const Reader& r, hid_t file) {
   h.clock.dt = r.attribute<double>(file, "dt", H5T_NATIVE_DOUBLE);
   h.clock.level = r.attribute<int>(file, "level", H5T_NATIVE_INT);
   h.clock.allowing = r.attribute<int>(file, "allowing", H5T_NATIVE_INT);
+  // The growth guard's cap (written since the stability criterion; none in older checkpoints).
+  h.clock.cap = H5Aexists(file, "cap") > 0 ? r.attribute<int>(file, "cap", H5T_NATIVE_INT) : -1;
   if (H5Lexists(file, "fluid", H5P_DEFAULT) <= 0) r.fail("fluid");
   {
     Id fluid{H5Gopen2(file, "fluid", H5P_DEFAULT), H5Gclose};

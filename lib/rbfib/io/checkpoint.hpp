@@ -13,7 +13,7 @@
 //   /shells/0, 1, ...     each LDSM shell's vertices, 3n (absent in older files: none)
 //   /series/<name>/values every row of the series, one after the other; .../widths each row's
 //                         length; attribute columns (the columns' names, one per line; may be empty)
-//   attributes of /: format ("rbfib checkpoint 2"), steps, dt (s), level, allowing, status
+//   attributes of /: format ("rbfib checkpoint 2"), steps, dt (s), level, allowing, cap, status
 //   ("running", "finished" or "stopped"), stop_message, stop_cause, wall_seconds, steps_timed, label
 // Format 1 (no series, no run attributes) is read as a running run without series.
 // A run that has ended (finished or stopped) never steps again; its checkpoint may keep no fluid

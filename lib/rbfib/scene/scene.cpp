@@ -244,11 +244,28 @@ void read_time(const Fields& f, Scene& s) {
     s.ib.adaptive.enabled = true;
     s.ib.adaptive.dt_min = a.positive("dt_min", "s");
     s.ib.adaptive.max_level = int(a.integer("max_level", 0, 30));
-    s.ib.adaptive.grow_after = a.has("grow_after") ? int(a.integer("grow_after", 1, 1000000)) : 16;
-    const double k = std::log2(s.fluid_options.dt / s.ib.adaptive.dt_min);
-    if (std::abs(k - std::round(k)) > 1e-9 || k < -1e-9 || k > s.ib.adaptive.max_level + 1e-9)
+    sim::AdaptiveStep& A = s.ib.adaptive;
+    if (a.has("criterion"))
+      A.criterion = a.choice("criterion", {"inertial", "stability"}) == "stability" ? sim::StepCriterion::stability : sim::StepCriterion::inertial;
+    const bool stability = A.criterion == sim::StepCriterion::stability;
+    A.grow_after = a.has("grow_after") ? int(a.integer("grow_after", 1, 1000000)) : stability ? 4 : 16;
+    if (a.has("ratio")) {
+      A.ratio = a.quantity("ratio", "");
+      if (!(A.ratio > 1 && A.ratio <= 2)) throw InputError(a.at("ratio"), to_text(A.ratio), "must lie in (1, 2]");
+    }
+    if (a.has("guard_growth")) {
+      if (!stability) throw InputError(a.at("guard_growth"), "given", "the growth guard belongs to criterion: stability");
+      A.guard_growth = a.quantity("guard_growth", "");
+      if (!(A.guard_growth >= 1)) throw InputError(a.at("guard_growth"), to_text(A.guard_growth), "must be at least 1");
+    }
+    if (a.has("guard_steps")) {
+      if (!stability) throw InputError(a.at("guard_steps"), "given", "the growth guard belongs to criterion: stability");
+      A.guard_steps = int(a.integer("guard_steps", 1, 1000));
+    }
+    const double k = std::log(s.fluid_options.dt / A.dt_min) / std::log(A.ratio);
+    if (std::abs(k - std::round(k)) > 1e-9 || k < -1e-9 || k > A.max_level + 1e-9)
       throw InputError(f.at("dt"), to_text(s.fluid_options.dt) + " s",
-                       "with the adaptive step, dt must be 2^k dt_min with k in [0, max_level]");
+                       "with the adaptive step, dt must be ratio^k dt_min (ratio " + to_text(A.ratio) + ") with k in [0, max_level]");
     a.finish();
   }
   f.finish();
@@ -968,8 +985,14 @@ std::string to_yaml(const Scene& s, const std::string& comment) {
     << ", coupling: " << (s.ib.coupling == sim::Coupling::midpoint ? "midpoint" : "seed") << ", dt: " << q(s.fluid_options.dt, "s")
     << ", end: " << q(s.t_end, "s");
   if (s.ib.adaptive.enabled)
-    o << ", adaptive: {dt_min: " << q(s.ib.adaptive.dt_min, "s") << ", max_level: " << s.ib.adaptive.max_level
-      << ", grow_after: " << s.ib.adaptive.grow_after << "}";
+    o << ", adaptive: {" << (s.ib.adaptive.criterion == sim::StepCriterion::stability ? "criterion: stability, " : "")
+      << "dt_min: " << q(s.ib.adaptive.dt_min, "s") << ", max_level: " << s.ib.adaptive.max_level
+      << ", grow_after: " << s.ib.adaptive.grow_after
+      << (s.ib.adaptive.ratio != 2 ? ", ratio: " + to_text(s.ib.adaptive.ratio) : std::string())
+      << (s.ib.adaptive.criterion == sim::StepCriterion::stability
+              ? ", guard_growth: " + to_text(s.ib.adaptive.guard_growth) + ", guard_steps: " + to_text(s.ib.adaptive.guard_steps)
+              : std::string())
+      << "}";
   o << "}\n";
   o << "ib: {kernel: " << ib::to_string(s.ib.kernel) << ", body_force: " << triple(s.ib.body_force, "dyn/cm^3") << "}\n";
   if (!s.types.empty()) o << "cell_types:\n";
@@ -1047,8 +1070,9 @@ std::string describe(const Scene& s) {
     << s.fluid_options.dt / units::ns << " ns, end " << s.t_end / units::us << " us ("
     << std::llround(s.t_end / s.fluid_options.dt) << " steps at dt)";
   if (s.ib.adaptive.enabled)
-    o << "; adaptive: dt = 2^k x " << s.ib.adaptive.dt_min / units::ns << " ns, k <= " << s.ib.adaptive.max_level << ", growing after "
-      << s.ib.adaptive.grow_after << " steps";
+    o << "; adaptive (" << sim::to_string(s.ib.adaptive.criterion) << "): dt = " << s.ib.adaptive.ratio << "^k x "
+      << s.ib.adaptive.dt_min / units::ns << " ns, k <= " << s.ib.adaptive.max_level << ", growing after " << s.ib.adaptive.grow_after
+      << " steps";
   o << "\n  kernel " << ib::to_string(s.ib.kernel) << "; body force [" << s.ib.body_force[0] << ", " << s.ib.body_force[1] << ", "
     << s.ib.body_force[2] << "] dyn/cm^3\n";
   for (const CellTypeEntry& t : s.types) {

@@ -2,6 +2,7 @@
 
 #include "rbfib/core/error.hpp"
 #include "rbfib/linalg/blas.hpp"
+#include "rbfib/sim/membrane_stability.hpp"
 
 #include <thrust/copy.h>
 #include <thrust/device_ptr.h>
@@ -45,6 +46,14 @@ const char* to_string(Coupling c) {
   return "?";
 }
 
+const char* to_string(StepCriterion c) {
+  switch (c) {
+    case StepCriterion::inertial: return "inertial (eq. 5.4)";
+    case StepCriterion::stability: return "stability (the sets' bounds and a growth guard; eq. 5.4 stops the run)";
+  }
+  return "?";
+}
+
 ImmersedBoundary::ImmersedBoundary(const MacGrid& grid, FluidParameters fluid, NavierStokesOptions options,
                                    BoundaryVelocity boundary, IbOptions ib)
     : ImmersedBoundary(std::make_unique<NavierStokesStep>(grid, fluid, std::move(options), std::move(boundary)), std::move(ib)) {}
@@ -70,10 +79,13 @@ ImmersedBoundary::ImmersedBoundary(std::unique_ptr<FluidStep> fluid, IbOptions i
     require(std::isfinite(a.dt_min) && a.dt_min > 0, "ib.adaptive.dt_min", a.dt_min, "must be positive and finite (s)");
     require(a.max_level >= 0 && a.max_level <= 30, "ib.adaptive.max_level", a.max_level, "must lie in [0, 30]");
     require(a.grow_after >= 1, "ib.adaptive.grow_after", a.grow_after, "must be at least 1 step");
-    const double k = std::log2(fluid_->dt() / a.dt_min);
+    require(a.ratio > 1 && a.ratio <= 2, "ib.adaptive.ratio", a.ratio, "must lie in (1, 2]");
+    require(a.guard_growth >= 1, "ib.adaptive.guard_growth", a.guard_growth, "must be at least 1");
+    require(a.guard_steps >= 1, "ib.adaptive.guard_steps", a.guard_steps, "must be at least 1 step");
+    const double k = std::log(fluid_->dt() / a.dt_min) / std::log(a.ratio);
     level_ = int(std::lround(k));
     require(std::abs(k - level_) < 1e-9 && level_ >= 0 && level_ <= a.max_level, "fluid.dt", fluid_->dt(),
-            "must be 2^k dt_min (dt_min = " + to_text(a.dt_min) + " s) with k in [0, " + to_text(a.max_level) + "]");
+            "must be " + to_text(a.ratio) + "^k dt_min (dt_min = " + to_text(a.dt_min) + " s) with k in [0, " + to_text(a.max_level) + "]");
     require(fluid_->dt() <= a.dt_max * (1 + 1e-12), "fluid.dt", fluid_->dt(),
             "exceeds the adaptive step's guard dt_max = " + to_text(a.dt_max) + " s (a wall's own stability bound)");
   }
@@ -187,13 +199,98 @@ void ImmersedBoundary::restore(const Carried& whole) {
   steps_ = c.clock.step;
   level_ = c.clock.level;
   allowing_ = c.clock.allowing;
+  cap_ = c.clock.cap;
+  past_.clear();  // the growth guard starts afresh (its memory is not carried)
+  flipping_ = quiet_ = 0;
   fluid_->set_dt(c.clock.dt);
 }
 
 void ImmersedBoundary::set_level(int level) {
   level_ = level;
   allowing_ = 0;
-  fluid_->set_dt(std::ldexp(options_.adaptive.dt_min, level));
+  past_.clear();  // D is a difference at one step size
+  flipping_ = quiet_ = 0;
+  const AdaptiveStep& a = options_.adaptive;
+  fluid_->set_dt(a.ratio == 2 ? std::ldexp(a.dt_min, level) : a.dt_min * std::pow(a.ratio, level));
+}
+
+int ImmersedBoundary::level_within(double dt) const {
+  const AdaptiveStep& a = options_.adaptive;
+  if (!(dt >= a.dt_min)) return -1;
+  int k = int(std::floor(std::log(dt / a.dt_min) / std::log(a.ratio) + 1e-9));
+  while (k > 0 && a.dt_min * std::pow(a.ratio, k) > dt * (1 + 1e-12)) --k;
+  return std::min(k, a.max_level);
+}
+
+namespace {
+/// d = F - 2 f1 + f2 (entrywise).
+void second_difference(const dvec& F, const dvec& f1, const dvec& f2, dvec& d) {
+  d.resize(F.size());
+  const double *pF = ptr(F), *p1 = ptr(f1), *p2 = ptr(f2);
+  double* pd = ptr(d);
+  for_each_index(index_t(F.size()), [=] RBFIB_HD (index_t k) { pd[k] = pF[k] - 2 * p1[k] + p2[k]; });
+}
+}  // namespace
+
+void ImmersedBoundary::guard(IbStepReport& r) {
+  const AdaptiveStep& a = options_.adaptive;
+  const FluidDecomposition* parts = fluid_->parts();
+  past_.resize(sets_.size());
+  // Per set: D^n . D^n, D^n . D^{n-1}, D^{n-1} . D^{n-1}; a set without a full memory counts as missing.
+  std::vector<double> sums(3 * sets_.size() + 1, 0.0);
+  for (std::size_t i = 0; i < sets_.size(); ++i) {
+    const dvec* F = sets_[i]->force_values();
+    PastForces& p = past_[i];
+    if (!F || F->empty()) continue;
+    if (p.f1.size() != F->size() || p.f2.size() != F->size() || p.v.size() != F->size()) {
+      sums.back() += 1;
+      continue;
+    }
+    second_difference(*F, p.f1, p.f2, p.now);
+    sums[3 * i] = blas::dot(p.now, p.now), sums[3 * i + 1] = blas::dot(p.now, p.v), sums[3 * i + 2] = blas::dot(p.v, p.v);
+  }
+  if (parts)
+    for (double& x : sums) x = parts->sum(x);
+  if (sums.back() > 0) return;  // some set's memory is not full: nothing measured
+  attempt_measured_ = true;
+  bool flipping = false;
+  for (std::size_t i = 0; i < sets_.size(); ++i) {
+    const double vv = sums[3 * i], vw = sums[3 * i + 1], ww = sums[3 * i + 2];
+    if (!(vv > 0 && ww > 0)) continue;
+    const double cosine = vw / std::sqrt(vv * ww), growth = std::sqrt(vv / ww);
+    r.oscillation_cosine = std::isnan(r.oscillation_cosine) ? cosine : std::min(r.oscillation_cosine, cosine);
+    if (cosine < -0.5) {
+      r.oscillation_growth = std::isnan(r.oscillation_growth) ? growth : std::max(r.oscillation_growth, growth);
+      if (growth > a.guard_growth) flipping = true;
+    }
+  }
+  attempt_flipping_ = flipping;
+  if (!flipping || flipping_ + 1 < a.guard_steps || level_ == 0) return;
+  // A growing sign-flipping mode: two rungs down, and no rung above the one under this one again.
+  cap_ = level_ - 1;
+  throw Refused{std::max(level_ - 2, 0), "the growth guard (a sign-flipping part of the forces grew by " +
+                                             to_text(r.oscillation_growth) + " per step over " + to_text(a.guard_steps) + " steps)"};
+}
+
+void ImmersedBoundary::remember_forces() {
+  past_.resize(sets_.size());
+  flipping_ = attempt_flipping_ ? flipping_ + 1 : 0;
+  quiet_ = attempt_measured_ && !attempt_flipping_ ? quiet_ + 1 : 0;
+  attempt_flipping_ = attempt_measured_ = false;
+  for (std::size_t i = 0; i < sets_.size(); ++i) {
+    const dvec* F = sets_[i]->force_values();
+    PastForces& p = past_[i];
+    if (!F) continue;
+    if (p.f1.size() == F->size() && p.f2.size() == F->size()) {
+      if (p.now.size() != F->size()) second_difference(*F, p.f1, p.f2, p.now);
+      std::swap(p.v, p.now);
+    } else {
+      p.v.clear();
+    }
+    p.now.clear();
+    std::swap(p.f2, p.f1);
+    p.f1 = *F;
+  }
 }
 
 index_t ImmersedBoundary::cells_in_run(index_t b) const {
@@ -272,31 +369,52 @@ IbStepReport ImmersedBoundary::step() {
   migrate();
   const AdaptiveStep& a = options_.adaptive;
   int refused = 0;
+  int by_guard = 0;
   for (;;) {
     try {
       IbStepReport r = attempt();
       r.refused = refused;
+      r.refused_by_guard = by_guard;
       if (a.enabled) {
-        // Grow by one level only after grow_after consecutive steps whose bound allowed 2 dt.
-        allowing_ = (level_ < a.max_level && 2 * r.dt <= r.dt_bound && 2 * r.dt <= a.dt_max * (1 + 1e-12)) ? allowing_ + 1 : 0;
+        // Grow by one level only after grow_after consecutive steps that allowed the next rung: by
+        // eq. 5.4 (inertial criterion) and by the sets' bounds and the guard's cap.
+        const double next = a.ratio * r.dt;
+        // With the stability criterion the guard must first have watched this rung quietly for
+        // guard_steps steps (its memory starts empty at each rung): a ladder that climbed faster
+        // would outrun the guard.
+        const bool open = level_ < a.max_level && next <= a.dt_max * (1 + 1e-12) &&
+                          (a.criterion == StepCriterion::stability ? (cap_ < 0 || level_ < cap_) && quiet_ >= a.guard_steps
+                                                                    : next <= r.dt_bound);
+        allowing_ = open ? allowing_ + 1 : 0;
         if (allowing_ >= a.grow_after) set_level(level_ + 1);
       }
       return r;
     } catch (const Refused& no) {
-      // Shrink at once to the largest level the bound allows, then take the step again.
-      const int fits = int(std::floor(std::log2(no.bound / a.dt_min)));
-      const int level = std::min(fits, level_ - 1);
-      if (level < 0)
+      // Take the step again at once at the level the refusal names.
+      if (no.level < 0)
         throw NumericalError(Cause::stopping_condition, "immersed-boundary step " + to_text(steps_) + " at t = " + to_text(time()) +
-                             " s: stopping condition (eq. 5.4) violated even at dt_min = " + to_text(a.dt_min) +
-                             " s: (1/4) sqrt(h rho / ||f||_inf) = " + to_text(no.bound) + " s (the state before this step is kept)");
-      set_level(level);
+                             " s: " + no.why + " (the state before this step is kept)");
+      if (a.criterion == StepCriterion::stability) ++by_guard;
+      set_level(std::min(no.level, level_ - 1));
       ++refused;
     }
   }
 }
 
 index_t ImmersedBoundary::add(cells::Batch batch) {
+  AdaptiveStep& a = options_.adaptive;
+  if (a.enabled && a.criterion == StepCriterion::stability && std::isfinite(a.membrane_gain)) {
+    // No rung above the membranes' explicit stability bound at gain 1/2 (sim/membrane_stability.hpp).
+    const MacGrid& g = fluid_->grid();
+    const double h = std::min({g.h(0), g.h(1), g.h(2)});
+    const MembraneStiffness m = membrane_stiffness(batch.type());
+    const double bound = membrane_dt_limit(m, h, fluid_->density(), fluid_->viscosity(), options_.kernel, a.membrane_gain);
+    a.dt_max = std::min(a.dt_max, bound);
+    require(fluid_->dt() <= a.dt_max * (1 + 1e-12), "fluid.dt", fluid_->dt(),
+            "exceeds the membranes' stability bound for cell type '" + batch.type().name() + "': " + to_text(bound) + " s (" +
+                membrane_limiting_family(m, h, fluid_->density(), fluid_->viscosity(), options_.kernel, a.membrane_gain) +
+                " modes at gain " + to_text(a.membrane_gain) + "; docs/derivations/membrane_stability)");
+  }
   std::vector<index_t> ids(static_cast<std::size_t>(batch.size()));
   std::iota(ids.begin(), ids.end(), index_t(0));
   const FluidDecomposition* parts = fluid_->parts();
@@ -410,6 +528,7 @@ IbStepReport ImmersedBoundary::attempt() {
       });
     });
     if (parts) r.elastic_energy = parts->sum(r.elastic_energy);
+    if (options_.adaptive.enabled && options_.adaptive.criterion == StepCriterion::stability) guard(r);
     r.seconds_forces = seconds_since(t0);
     // (d) f^{n+1} = S F^{n+1} from where the forces act, summed over the sets, plus the body force.
     // A split fluid: spread on the Lagrangian grid, its ghost planes summed into their owners and
@@ -434,10 +553,17 @@ IbStepReport ImmersedBoundary::attempt() {
     r.dt_bound = r.max_force_density > 0 ? 0.25 * std::sqrt(h * fluid_->density() / r.max_force_density)
                                          : std::numeric_limits<double>::infinity();
     if (!std::isfinite(r.max_force_density)) throw NumericalError(Cause::non_finite, "non-finite spread force density");
-    if (options_.adaptive.enabled && dt > r.dt_bound) throw Refused{r.dt_bound};
-    if (options_.stopping_condition && dt > r.dt_bound)
+    r.peak_set = peak_set(f_);
+    const AdaptiveStep& a = options_.adaptive;
+    if (a.enabled && a.criterion == StepCriterion::inertial && dt > r.dt_bound)
+      throw Refused{std::min(level_within(r.dt_bound), level_ - 1),
+                    "stopping condition (eq. 5.4) violated even at dt_min = " + to_text(a.dt_min) +
+                        " s: (1/4) sqrt(h rho / ||f||_inf) = " + to_text(r.dt_bound) + " s"};
+    // The stability criterion: eq. 5.4 stops the run where the seed's step (dt_min) violates it.
+    const double stop_dt = a.enabled && a.criterion == StepCriterion::stability ? a.dt_min : dt;
+    if (options_.stopping_condition && stop_dt > r.dt_bound)
       throw NumericalError(Cause::stopping_condition, "stopping condition (eq. 5.4) violated: ||f||_inf = " + to_text(r.max_force_density) +
-                                                          " dyn/cm^3, dt = " + to_text(dt) + " s > (1/4) sqrt(h rho / ||f||_inf) = " +
+                                                          " dyn/cm^3, dt = " + to_text(stop_dt) + " s > (1/4) sqrt(h rho / ||f||_inf) = " +
                                                           to_text(r.dt_bound) + " s");
     // (e) the fluid step, into the fluid's other buffer; with a held wall, its force solved from
     // that step and the step taken again with it (sim/held_wall.hpp).
@@ -484,7 +610,47 @@ IbStepReport ImmersedBoundary::attempt() {
   }
   fluid_->accept();
   ++steps_;
+  if (options_.adaptive.enabled && options_.adaptive.criterion == StepCriterion::stability) remember_forces();
   return r;
+}
+
+int ImmersedBoundary::peak_set(const VectorField& f) const {
+  if (fluid_->parts()) return -1;  // one process's part of the grid: not attributed
+  int comp = -1;
+  index_t at = 0;
+  double peak = 0;
+  for (int a = 0; a < 3; ++a) {
+    if (f[a].empty()) continue;
+    const host_vector<double> h(f[a]);
+    for (std::size_t k = 0; k < h.size(); ++k)
+      if (std::abs(h[k]) > peak) peak = std::abs(h[k]), comp = a, at = index_t(k);
+  }
+  if (comp < 0) return -1;
+  const Box box = fluid_->operators().component_box(comp);
+  const index_t nx = box.n(0), ny = box.n(1);
+  const std::array<double, 3> x{box.x(0, int(at % nx)), box.x(1, int((at / nx) % ny)), box.x(2, int(at / (nx * ny)))};
+  return nearest_set(x);
+}
+
+int ImmersedBoundary::nearest_set(const std::array<double, 3>& x) const {
+  const MacGrid& g = fluid_->grid();
+  int best = -1;
+  double closest = INFINITY;
+  for (std::size_t i = 0; i < sets_.size(); ++i) {
+    if (!sets_[i]->force_values()) continue;
+    const std::vector<double> X = sets_[i]->force_sites();  // n x 3
+    const std::size_t n = X.size() / 3;
+    for (std::size_t k = 0; k < n; ++k) {
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) {
+        double d = X[a * n + k] - x[std::size_t(a)];
+        if (g.periodic(a)) d -= g.length[std::size_t(a)] * std::round(d / g.length[std::size_t(a)]);
+        d2 += d * d;
+      }
+      if (d2 < closest) closest = d2, best = int(i);
+    }
+  }
+  return best;
 }
 
 }  // namespace rbfib::sim

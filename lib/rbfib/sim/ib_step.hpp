@@ -58,20 +58,49 @@ namespace rbfib::sim {
 enum class Coupling { seed, midpoint, forward_euler };
 const char* to_string(Coupling c);
 
-/// The adaptive step of the seed's own code: dt = 2^k dt_min for a level k in [0, max_level],
-/// chosen from eq. 5.4. A step whose force density makes dt exceed the bound is refused (the
-/// state is restored) and taken again at once at the largest level the bound allows; the level
-/// grows by one only after grow_after consecutive steps whose bound allowed twice their dt. The
-/// first step is taken at the options' dt, which must be such a size.
+/// What sets the adaptive step's rung.
+enum class StepCriterion {
+  /// Eq. 5.4, the seed's own code: a step whose force density makes dt exceed
+  /// (1/4) sqrt(h rho / ||f||_inf) is refused and taken again at the largest rung the bound allows.
+  inertial,
+  /// The coupled system's explicit stability (docs/derivations/membrane_stability): the rung is
+  /// capped by dt_max (the sets' own bounds) and a growth guard refuses a step whose forces carry a
+  /// sign-flipping part that grows (see AdaptiveStep::guard_growth); eq. 5.4 is then the seed's
+  /// stop condition only, checked at dt_min (the step the seed's runs take).
+  stability,
+};
+const char* to_string(StepCriterion c);
+
+/// The adaptive step: dt = ratio^k dt_min for a level k in [0, max_level] (ratio 2: the seed's own
+/// code), chosen by the criterion. A refused step leaves the state as it was and is taken again at
+/// once at a lower level; the level grows by one only after grow_after consecutive steps that
+/// allowed the next rung. The first step is taken at the options' dt, which must be such a size.
 struct AdaptiveStep {
   bool enabled = false;
   double dt_min = 0;    ///< s
-  int max_level = 0;    ///< dt <= 2^max_level dt_min
-  int grow_after = 16;  ///< steps that allow a doubling before it is taken
+  int max_level = 0;    ///< dt <= ratio^max_level dt_min
+  int grow_after = 16;  ///< steps that allow the next rung before it is taken
   /// No rung above this step (s): a guard from a bound eq. 5.4 does not see, such as tethered
-  /// points' explicit stability (sim/tether_stability.hpp; scene::build sets it for tethers with
-  /// fixed constants).
+  /// points' explicit stability (sim/tether_stability.hpp; scene::build sets it) or, with the
+  /// stability criterion, the membranes' (sim/membrane_stability.hpp; set as cells are added).
   double dt_max = INFINITY;
+  StepCriterion criterion = StepCriterion::inertial;
+  double ratio = 2;     ///< between rungs, in (1, 2]
+  /// The stability criterion's growth guard (docs/derivations/membrane_stability, section 6). With
+  /// F^n a set's forces at step n, D^n = F^n - 2 F^{n-1} + F^{n-2} is their sign-flipping part: a
+  /// smooth motion gives D^n along D^{n-1}; an unstable mode of the coupling (growth factor mu < -1)
+  /// gives D^n against it, |D^n| / |D^{n-1}| = |mu| (1.11-1.13 at 1.1 times the threshold step). A
+  /// step of a set whose D^n has pointed against D^{n-1} (cosine < -1/2) and grown by more than
+  /// guard_growth on guard_steps consecutive steps is refused, and taken again two rungs lower;
+  /// the ladder is then capped one rung under the refused step for the rest of the run. The
+  /// ladder climbs a rung only after the guard has watched the current one for guard_steps steps
+  /// without such a pattern (and grow_after steps in all).
+  double guard_growth = 1.05;
+  int guard_steps = 4;
+  /// The stability criterion's cap from the membranes: no rung above the step whose gain is this
+  /// (sim/membrane_stability.hpp: 1 is the limit; 1/2 leaves the factor 2 the derivation's mode
+  /// shapes leave open); infinite: no cap (the guard alone).
+  double membrane_gain = 0.5;
 };
 
 /// Where the coupled step stands in time: the one clock of a run (the fluid's state carries t for
@@ -80,8 +109,11 @@ struct Clock {
   double t = 0;      ///< t^n (s)
   double dt = 0;     ///< the size of the next step (s)
   long step = 0;     ///< steps taken from t = 0
-  int level = 0;     ///< the adaptive ladder's level: dt = 2^level dt_min (0 without the ladder)
-  int allowing = 0;  ///< consecutive steps whose eq. 5.4 bound allowed twice their dt
+  int level = 0;     ///< the adaptive ladder's level: dt = ratio^level dt_min (0 without the ladder)
+  int allowing = 0;  ///< consecutive steps that allowed the next rung
+  /// The highest level the growth guard leaves open (stability criterion): one rung under a
+  /// refused step's (s), for the rest of the run; -1 while it has not fired.
+  int cap = -1;
 };
 
 struct IbOptions {
@@ -104,7 +136,15 @@ struct IbOptions {
 /// What one step did (seconds per component and the eq. 5.4 numbers).
 struct IbStepReport {
   double dt = 0;                 ///< the step taken (s)
-  int refused = 0;               ///< attempts refused by eq. 5.4 before it (adaptive step)
+  int refused = 0;               ///< attempts refused before it (adaptive step: eq. 5.4 or the growth guard)
+  int refused_by_guard = 0;      ///< of those, refused by the growth guard (stability criterion)
+  /// The growth guard's measures over the sets (NaN where not measured: fewer than four steps at
+  /// this rung): the largest ||D^n|| / ||D^{n-1}|| among the sets whose D^n points against D^{n-1}
+  /// (cosine below -1/2), and the smallest cosine (AdaptiveStep).
+  double oscillation_growth = NAN, oscillation_cosine = NAN;
+  /// The set whose force acts nearest the peak of ||f||_inf (index in the order sets were added),
+  /// -1 without forces.
+  int peak_set = -1;
   double max_force_density = 0;  ///< ||f||_inf on the grid (dyn/cm^3)
   double dt_bound = 0;           ///< (1/4) sqrt(h rho / ||f||_inf) (s); infinite when f = 0
   double max_velocity = 0;       ///< max |u_a| after the step (cm/s)
@@ -180,7 +220,7 @@ class ImmersedBoundary {
   double time() const { return fluid_->state().t; }
   long step_count() const { return steps_; }
   /// t, dt, the step count and the ladder's level, read together.
-  Clock clock() const { return Clock{time(), dt(), steps_, level_, allowing_}; }
+  Clock clock() const { return Clock{time(), dt(), steps_, level_, allowing_, cap_}; }
 
   /// Everything a step carries over to the next, for checkpoints: the fluid state, each batch's
   /// data-site state (X and U), each point set's positions, each shell's vertices and the clock
@@ -232,9 +272,22 @@ class ImmersedBoundary {
   /// when the adaptive step is on and eq. 5.4 refuses it.
   IbStepReport attempt();
   struct Refused {
-    double bound;
+    int level;  ///< the level to take the step again at (< 0: none is left)
+    std::string why;
   };
   void set_level(int level);
+  /// The level whose step is the largest at most dt (s); -1 below dt_min.
+  int level_within(double dt) const;
+  /// The growth guard (stability criterion): throws Refused when this attempt's forces carry a
+  /// growing sign-flipping part; fills the report's measures.
+  void guard(IbStepReport& r);
+  /// Keeps this step's forces for the guard's next steps (after the step is accepted).
+  void remember_forces();
+  /// The set whose force acts nearest the largest |f| of the spread force density (-1 on a split
+  /// fluid, or without forces).
+  int peak_set(const VectorField& f) const;
+  /// The index of the set whose force sites lie nearest x (cm), -1 without any.
+  int nearest_set(const std::array<double, 3>& x) const;
   /// On a split fluid: the cells whose centroid left this process's planes go to their owner.
   void migrate();
   /// Keeps this process's cells of a whole batch (records with indices 0..N-1) in batch b.
@@ -256,7 +309,20 @@ class ImmersedBoundary {
   VectorField f_, scratch_;  // the force density; a scratch field for the non-binned spreadings
   VectorField u_wide_, f_wide_;  // split fluid: velocity and force on the Lagrangian grid
   long steps_ = 0;
-  int level_ = 0, allowing_ = 0;  // adaptive step: current level, consecutive steps allowing a doubling
+  int level_ = 0, allowing_ = 0;  // adaptive step: current level, consecutive steps allowing the next rung
+  // The growth guard's memory: every set's forces at the last two accepted steps at this rung
+  // (oldest first; emptied when the rung changes or a state is restored) and ||D|| of the last.
+  struct PastForces {
+    dvec f1, f2;  // F^{n-1}, F^{n-2}
+    dvec v;       // D^{n-1}
+    dvec now;     // D^n of the attempt (scratch)
+  };
+  std::vector<PastForces> past_;  // per set
+  int flipping_ = 0;              // consecutive accepted steps whose D flipped and grew in some set
+  bool attempt_flipping_ = false; // this attempt's D flipped and grew in some set
+  bool attempt_measured_ = false; // this attempt's D was measured in every set
+  int quiet_ = 0;                 // consecutive accepted steps at this rung measured without flipping
+  int cap_ = -1;                  // Clock::cap
 };
 
 }  // namespace rbfib::sim

@@ -182,6 +182,12 @@ void TetheredPointSet::predict(double c) {
   if (predicted_) blas::axpy(c, U_, points_.X);
 }
 
+std::vector<double> TetheredPointSet::force_sites() const {
+  std::vector<double> X(points_.X.size());
+  thrust::copy(points_.X.begin(), points_.X.end(), X.begin());
+  return X;
+}
+
 double TetheredPointSet::compute_force() {
   // Eq. 2.10 at X (X^n, or X* when predicted): F = -k (X - X') - eta U^n, per point.
   F_ = points_.X;

@@ -51,6 +51,9 @@ class LagrangianSet {
   virtual void update(double dt, const std::array<double, 3>& u_frame) = 0;
   /// Seconds of the last compute_force() spent in dense products (0 for a set without them).
   virtual double seconds_force_products() const { return 0; }
+  /// The last compute_force()'s forces (dyn, one entry per site and component), what the step's
+  /// growth guard watches; null for a set that offers none.
+  virtual const dvec* force_values() const { return nullptr; }
   /// Where the last compute_force()'s forces act, n x 3 column-major (cm, a host copy): what a set
   /// linked to this one reads (the cortex's adhesion, sim/cortex.hpp). Throws InputError for a
   /// set that offers none.
@@ -91,6 +94,7 @@ class CellBatchSet final : public LagrangianSet {
   void interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) override;
   void update(double dt, const std::array<double, 3>& u_frame) override;
   double seconds_force_products() const override { return timings_.products(); }
+  const dvec* force_values() const override { return &forces_.force.storage(); }
   /// The sample sites of the last force call (every cell's, cell after cell).
   std::vector<double> force_sites() const override { return forces_.positions.to_host(); }
 
@@ -155,6 +159,9 @@ class TetheredPointSet final : public LagrangianSet {
   void spread(ib::Interaction& ib, ib::Spreading algorithm, VectorField& f, VectorField& scratch) override;
   void interpolate_end(ib::Interaction& ib, const VectorField& u, bool at_predicted) override;
   void update(double dt, const std::array<double, 3>& u_frame) override;
+  const dvec* force_values() const override { return &F_; }
+  /// The points (X^n: the seed's coupling spreads from there; X* when predicted), n x 3.
+  std::vector<double> force_sites() const override;
   /// The frame velocity u_c of eq. (95) after (f): (1 / (n dt)) sum_k (X'_k - (X^n_k + dt U_k)) (cm/s).
   std::array<double, 3> frame_velocity(double dt) const;
 
