@@ -260,7 +260,8 @@ void print_check(const scene::Scene& s) {
 std::vector<std::string> csv_columns(const sim::ImmersedBoundary& ib) {
   std::vector<std::string> c = {"step", "t_s", "dt_s", "max_velocity_cm_s", "kinetic_energy_erg", "elastic_energy_erg",
                                 "max_force_density_dyn_cm3", "dt_bound_s", "seconds_interpolation", "seconds_forces",
-                                "seconds_spreading", "seconds_fluid"};
+                                "seconds_spreading", "seconds_fluid", "refused", "refused_by_guard", "oscillation_growth",
+                                "oscillation_cosine", "peak_set"};
   for (index_t b = 0; b < ib.batches(); ++b)
     for (index_t k = 0; k < ib.cells_in_run(b); ++k) c.push_back("volume_" + ib.batch(b).type().name() + "_" + std::to_string(k) + "_um3");
   return c;
@@ -301,9 +302,11 @@ int advance(const scene::Scene& s, const std::string& out, double until, const P
     if (d.columns.empty()) d.columns = csv_columns(ib);
     std::vector<double> row = {double(ib.step_count()), ib.time(), r->dt, r->max_velocity, r->kinetic_energy, r->elastic_energy,
                                r->max_force_density, r->dt_bound, r->seconds_interpolation, r->seconds_forces,
-                               r->seconds_spreading, r->seconds_fluid};
+                               r->seconds_spreading, r->seconds_fluid, double(r->refused), double(r->refused_by_guard),
+                               r->oscillation_growth, r->oscillation_cosine, double(r->peak_set)};
     for (index_t b = 0; b < ib.batches(); ++b)  // every cell of the run, in the order of their indices
       for (double v : ib.run_cell_values(b, ib.diagnostics(b).volume)) row.push_back(v / (units::um * units::um * units::um));
+    if (row.size() != d.columns.size()) row.resize(d.columns.size(), NAN);  // a run begun with fewer columns keeps them
     if (writer) csv << csv_line(row);
     d.rows.push_back(std::move(row));
   };

@@ -192,6 +192,11 @@ TEST(Scene, EveryBadInputNamesItsField) {
       {"plane: {y: 1 um, points: [32, 30]}", "plane: {y: 20 um, points: [32, 30]}", "tethered_points[0].plane.y"},
       {"output: {diagnostics_every: 5}", "output: {diagnostics_every: 0}", "output.diagnostics_every"},
       {"output: {diagnostics_every: 5}", "output: {snapshots: 1 us}", "output.snapshots"},
+      {"output: {diagnostics_every: 5}", "output: {stability: maybe}", "output.stability"},
+      {"end: 1 us", "end: 1 us\n  stopping_condition: never", "time.stopping_condition"},
+      {"max_level: 3}", "max_level: 3, criterion: fast}", "time.adaptive.criterion"},
+      {"max_level: 3}", "max_level: 3, ratio: 3}", "time.adaptive.ratio"},
+      {"max_level: 3}", "max_level: 3, guard_steps: 2}", "time.adaptive.guard_steps"},  // guard without stability
   };
   for (const Case& c : cases) EXPECT_EQ(field_of(replaced(ok, c.from, c.to)), c.field) << c.from << " -> " << c.to;
   // A kernel wider than the grid allows: B3 spans 4 cells, a 4-cell axis needs 3.
@@ -202,6 +207,32 @@ TEST(Scene, EveryBadInputNamesItsField) {
   EXPECT_EQ(field_of(""), "mutant");               // empty
   const std::string m = testing::message_of<InputError>([&] { parse_scene(replaced(ok, "0.1 cP", "0.1 cm"), "m"); });
   EXPECT_NE(m.find("fluid.viscosity = '0.1 cm': has the dimension length; expected dynamic viscosity"), std::string::npos) << m;
+}
+
+TEST(Scene, TheStabilityCriterionAndItsSwitchesAreReadAndWrittenBack) {
+  // time.adaptive.criterion: stability with rungs of 2^(1/2); eq. 5.4 off; the step's stability measured.
+  std::string text = replaced(channel_scene, "dt: 100 ns", "dt: 50 ns");
+  text = replaced(text, "max_level: 3}", "max_level: 6, criterion: stability, ratio: 1.4142135623730951, guard_growth: 1.1}");
+  text = replaced(text, "end: 1 us", "end: 1 us\n  stopping_condition: off");
+  text = replaced(text, "output: {diagnostics_every: 5}", "output: {diagnostics_every: 5, stability: yes}");
+  const Scene s = parse_scene(text, "stability");
+  for (const Scene& t : {s, parse_scene(to_yaml(s), "back")}) {
+    EXPECT_EQ(t.ib.adaptive.criterion, sim::StepCriterion::stability);
+    EXPECT_NEAR(t.ib.adaptive.ratio, std::sqrt(2.0), 1e-15);
+    EXPECT_EQ(t.ib.adaptive.grow_after, 4);  // the stability criterion's default
+    EXPECT_EQ(t.ib.adaptive.guard_growth, 1.1);
+    EXPECT_FALSE(t.ib.stopping_condition);
+    EXPECT_TRUE(t.ib.watch_stability);
+  }
+  // dt = 50 ns = sqrt(2)^2 x 25 ns; 60 ns is no rung
+  EXPECT_EQ(field_of(replaced(text, "dt: 50 ns", "dt: 60 ns")), "time.dt");
+  // The platelets' membrane bound at gain 1/2 (and the tethers') caps the ladder, above the first step.
+  const sim::ImmersedBoundary ib = build(s);
+  EXPECT_TRUE(std::isfinite(ib.options().adaptive.dt_max));
+  EXPECT_GT(ib.options().adaptive.dt_max, 50e-9);
+  EXPECT_LT(ib.options().adaptive.dt_max, 1e-5);
+  // The inertial default writes none of it back.
+  EXPECT_EQ(to_yaml(parse_scene(channel_scene, "plain")).find("criterion"), std::string::npos);
 }
 
 TEST(Scene, SinglePrecisionProductsAreReadWrittenBackAndBuilt) {

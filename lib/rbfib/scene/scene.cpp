@@ -239,6 +239,9 @@ void read_time(const Fields& f, Scene& s) {
   s.t_end = f.positive("end", "s");
   if (s.t_end < s.fluid_options.dt)
     throw InputError(f.at("end"), to_text(s.t_end) + " s", "must be at least one step (dt = " + to_text(s.fluid_options.dt) + " s)");
+  // Eq. 5.4 as a stop condition (on by default); off only for studies of the coupling's stability
+  // (a non-finite force or velocity and an inverted cell still stop the run).
+  if (f.has("stopping_condition")) s.ib.stopping_condition = f.choice("stopping_condition", {"eq54", "off"}) == "eq54";
   if (f.has("adaptive")) {
     const Fields a = f.map("adaptive");
     s.ib.adaptive.enabled = true;
@@ -597,6 +600,7 @@ Scene parse_scene(const std::string& yaml, const std::string& origin) {
     if (o.has("diagnostics_every")) s.diagnostics_every = int(o.integer("diagnostics_every", 1, 1000000000));
     if (o.has("checkpoint_every")) s.checkpoint_every = o.positive("checkpoint_every", "s");
     if (o.has("snapshot_every")) s.snapshot_every = o.positive("snapshot_every", "s");
+    if (o.has("stability")) s.ib.watch_stability = o.choice("stability", {"yes", "no"}) == "yes";
     o.finish();
   }
   f.finish();
@@ -849,6 +853,10 @@ sim::ImmersedBoundary build(const Scene& s, const StartingState* start, std::sha
     sim::ImmersedBoundary::Carried c = ib.carried();
     c.fluid = start->state.fluid;
     c.clock = start->state.clock;
+    if (!s.ib.adaptive.enabled) {  // without a ladder the scene's dt is the step from the start's time on
+      c.clock.dt = s.fluid_options.dt;
+      c.clock.level = c.clock.allowing = 0, c.clock.cap = -1;
+    }
     c.points = start->state.points;
     for (std::size_t b = 0; b < kept.size(); ++b)
       if (kept[b]) c.batches[b] = *kept[b];
@@ -984,6 +992,7 @@ std::string to_yaml(const Scene& s, const std::string& comment) {
     << (s.fluid_options.integrator == TimeIntegrator::peskin_two_stage ? "peskin_two_stage" : "backward_forward_euler")
     << ", coupling: " << (s.ib.coupling == sim::Coupling::midpoint ? "midpoint" : "seed") << ", dt: " << q(s.fluid_options.dt, "s")
     << ", end: " << q(s.t_end, "s");
+  if (!s.ib.stopping_condition) o << ", stopping_condition: off";
   if (s.ib.adaptive.enabled)
     o << ", adaptive: {" << (s.ib.adaptive.criterion == sim::StepCriterion::stability ? "criterion: stability, " : "")
       << "dt_min: " << q(s.ib.adaptive.dt_min, "s") << ", max_level: " << s.ib.adaptive.max_level
@@ -1036,6 +1045,7 @@ std::string to_yaml(const Scene& s, const std::string& comment) {
   o << "output: {diagnostics_every: " << s.diagnostics_every;
   if (s.checkpoint_every > 0) o << ", checkpoint_every: " << q(s.checkpoint_every, "s");
   if (s.snapshot_every > 0) o << ", snapshot_every: " << q(s.snapshot_every, "s");
+  if (s.ib.watch_stability) o << ", stability: yes";
   o << "}\n";
   return o.str();
 }

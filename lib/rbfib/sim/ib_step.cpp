@@ -232,6 +232,12 @@ void second_difference(const dvec& F, const dvec& f1, const dvec& f2, dvec& d) {
 }
 }  // namespace
 
+bool ImmersedBoundary::guarded() const {
+  return options_.adaptive.enabled && options_.adaptive.criterion == StepCriterion::stability;
+}
+
+bool ImmersedBoundary::watched() const { return guarded() || options_.watch_stability; }
+
 void ImmersedBoundary::guard(IbStepReport& r) {
   const AdaptiveStep& a = options_.adaptive;
   const FluidDecomposition* parts = fluid_->parts();
@@ -265,7 +271,7 @@ void ImmersedBoundary::guard(IbStepReport& r) {
     }
   }
   attempt_flipping_ = flipping;
-  if (!flipping || flipping_ + 1 < a.guard_steps || level_ == 0) return;
+  if (!guarded() || !flipping || flipping_ + 1 < a.guard_steps || level_ == 0) return;
   // A growing sign-flipping mode: two rungs down, and no rung above the one under this one again.
   cap_ = level_ - 1;
   throw Refused{std::max(level_ - 2, 0), "the growth guard (a sign-flipping part of the forces grew by " +
@@ -528,7 +534,7 @@ IbStepReport ImmersedBoundary::attempt() {
       });
     });
     if (parts) r.elastic_energy = parts->sum(r.elastic_energy);
-    if (options_.adaptive.enabled && options_.adaptive.criterion == StepCriterion::stability) guard(r);
+    if (watched()) guard(r);
     r.seconds_forces = seconds_since(t0);
     // (d) f^{n+1} = S F^{n+1} from where the forces act, summed over the sets, plus the body force.
     // A split fluid: spread on the Lagrangian grid, its ghost planes summed into their owners and
@@ -553,7 +559,7 @@ IbStepReport ImmersedBoundary::attempt() {
     r.dt_bound = r.max_force_density > 0 ? 0.25 * std::sqrt(h * fluid_->density() / r.max_force_density)
                                          : std::numeric_limits<double>::infinity();
     if (!std::isfinite(r.max_force_density)) throw NumericalError(Cause::non_finite, "non-finite spread force density");
-    r.peak_set = peak_set(f_);
+    if (options_.watch_stability) r.peak_set = peak_set(f_);
     const AdaptiveStep& a = options_.adaptive;
     if (a.enabled && a.criterion == StepCriterion::inertial && dt > r.dt_bound)
       throw Refused{std::min(level_within(r.dt_bound), level_ - 1),
@@ -610,7 +616,7 @@ IbStepReport ImmersedBoundary::attempt() {
   }
   fluid_->accept();
   ++steps_;
-  if (options_.adaptive.enabled && options_.adaptive.criterion == StepCriterion::stability) remember_forces();
+  if (watched()) remember_forces();
   return r;
 }
 

@@ -123,6 +123,11 @@ struct IbOptions {
   /// Interpolation always uses the sorted points (the binned algorithm).
   ib::Spreading spreading = ib::Spreading::binned;
   bool stopping_condition = true;   ///< check eq. 5.4 every step
+  /// Measure each step's stability diagnostics whatever the step: the forces' sign-flipping part
+  /// (AdaptiveStep's growth guard, which the stability criterion measures anyway) and the set whose
+  /// force acts nearest the peak of ||f||_inf (a search over every set's force sites: a few ms per
+  /// step at the seed's whole-blood sizes).
+  bool watch_stability = false;
   /// A uniform body force density added to the spread force every step (dyn/cm^3), e.g. a mean
   /// pressure gradient driving a channel or a periodic box.
   std::array<double, 3> body_force{0, 0, 0};
@@ -143,7 +148,7 @@ struct IbStepReport {
   /// (cosine below -1/2), and the smallest cosine (AdaptiveStep).
   double oscillation_growth = NAN, oscillation_cosine = NAN;
   /// The set whose force acts nearest the peak of ||f||_inf (index in the order sets were added),
-  /// -1 without forces.
+  /// -1 without forces or unless IbOptions::watch_stability.
   int peak_set = -1;
   double max_force_density = 0;  ///< ||f||_inf on the grid (dyn/cm^3)
   double dt_bound = 0;           ///< (1/4) sqrt(h rho / ||f||_inf) (s); infinite when f = 0
@@ -278,8 +283,10 @@ class ImmersedBoundary {
   void set_level(int level);
   /// The level whose step is the largest at most dt (s); -1 below dt_min.
   int level_within(double dt) const;
-  /// The growth guard (stability criterion): throws Refused when this attempt's forces carry a
-  /// growing sign-flipping part; fills the report's measures.
+  /// The growth guard's measures of this attempt's forces, into the report; with the stability
+  /// criterion, throws Refused when they carry a growing sign-flipping part.
+  bool guarded() const;
+  bool watched() const;
   void guard(IbStepReport& r);
   /// Keeps this step's forces for the guard's next steps (after the step is accepted).
   void remember_forces();
