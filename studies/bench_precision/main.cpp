@@ -198,22 +198,6 @@ std::string variant(const scene::Scene& base, double t_end, bool seed_sites, boo
                                (shift != 0 ? ", first cell moved by " + to_text(shift / units::um) + " um" : ""));
 }
 
-/// Largest distance (um) between the cells' data sites of two runs.
-double divergence(const st::SceneRun& a, const st::SceneRun& b) {
-  double m = 0;
-  for (std::size_t k = 0; k < a.final_positions.size(); ++k) {
-    const std::vector<double>& X = a.final_positions[k];
-    const std::vector<double>& Y = b.final_positions.at(k);
-    const std::size_t n = X.size() / 3;  // component-major, 3 n for one batch's N cells together
-    for (std::size_t i = 0; i < n; ++i) {
-      double d2 = 0;
-      for (std::size_t d = 0; d < 3; ++d) d2 += (X[d * n + i] - Y[d * n + i]) * (X[d * n + i] - Y[d * n + i]);
-      m = std::max(m, std::sqrt(d2));
-    }
-  }
-  return m / units::um;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -277,7 +261,7 @@ int main(int argc, char** argv) {
         finished = finished && r[k].finished;
         if (!r[k].stopped.empty()) st::log(opt, "2. " + name + " (" + labels[k] + ") stopped: " + r[k].stopped);
       }
-      const double ds = finished ? divergence(r[1], r[0]) : NAN, dp = finished ? divergence(r[2], r[0]) : NAN;
+      const double ds = finished ? st::divergence_um(r[1], r[0]) : NAN, dp = finished ? st::divergence_um(r[2], r[0]) : NAN;
       for (int k = 0; k < 3; ++k)
         runs["rows"].push(st::row({name, labels[k], double(r[k].steps), r[k].seconds_per_step(), k == 0 ? 0.0 : (k == 1 ? ds : dp),
                                    r[k].stopped.empty() ? "no" : r[k].stopped}));

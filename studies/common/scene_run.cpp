@@ -7,6 +7,7 @@
 #include "rbfib/scene/scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -30,11 +31,12 @@ bool scene_run_ended(const std::string& text, const std::string& tag, const Opti
 }
 
 SceneRun run_scene(const std::string& text, const std::string& tag, run::Cadence every, bool resumable, const Options& opt,
-                   const SceneRunHooks& hooks, double max_seconds) {
+                   const SceneRunHooks& hooks, double max_seconds, bool land_on_end) {
   std::ofstream(opt.out_dir + "/scene_" + tag + ".yaml") << text;
   scene::Scene sc = scene::parse_scene(text, "scene_" + tag + ".yaml");
   run::Options o;
   o.t_end = sc.t_end;
+  o.land_on_end = land_on_end;
   o.sitting = resumable ? std::max(0.0, max_seconds) : INFINITY;  // a spent sitting takes no step
   if (resumable) o.checkpoint = checkpoint_path(opt, tag);
   o.ended_keeps_fluid = false;  // what is taken from an ended run: its series and its cells and points
@@ -68,6 +70,21 @@ SceneRun run_scene(const std::string& text, const std::string& tag, run::Cadence
   for (index_t b = 0; b < ib.batches(); ++b) r.final_positions.push_back(ib.batch(b).positions_host());
   for (index_t p = 0; p < ib.point_sets(); ++p) r.final_points.push_back(ib.points(p).X);
   return r;
+}
+
+double divergence_um(const SceneRun& a, const SceneRun& b) {
+  double m = 0;
+  for (std::size_t k = 0; k < a.final_positions.size(); ++k) {
+    const std::vector<double>& X = a.final_positions[k];
+    const std::vector<double>& Y = b.final_positions.at(k);
+    const std::size_t n = X.size() / 3;  // component-major, 3 n for one batch's N cells together
+    for (std::size_t i = 0; i < n; ++i) {
+      double d2 = 0;
+      for (std::size_t d = 0; d < 3; ++d) d2 += (X[d * n + i] - Y[d * n + i]) * (X[d * n + i] - Y[d * n + i]);
+      m = std::max(m, std::sqrt(d2));
+    }
+  }
+  return m / units::um;
 }
 
 }  // namespace rbfib::study

@@ -53,8 +53,13 @@ struct SceneRun {
 /// simulated time for a run whose step changes) and at the end;
 /// writes DIR/scene_<tag>.yaml. A resumable run given `max_seconds` of wall time (a sitting) saves
 /// its checkpoint when they are spent and returns unfinished (continued at the next start).
+/// `land_on_end`: with the adaptive step, the last step lands on the scene's end (run::Options).
 SceneRun run_scene(const std::string& text, const std::string& tag, run::Cadence every, bool resumable, const Options& opt,
-                   const SceneRunHooks& hooks, double max_seconds = INFINITY);
+                   const SceneRunHooks& hooks, double max_seconds = INFINITY, bool land_on_end = false);
+
+/// The largest distance (um) between the data sites of two runs' cells at their ends (the same
+/// scene's cells, compared site by site): how far one run's result lies from another's.
+double divergence_um(const SceneRun& a, const SceneRun& b);
 
 /// Whether the resumable run of `text` under `tag` has ended (finished or stopped) in a checkpoint
 /// this sitting would continue from: for sharing a sitting among the runs still to go.

@@ -111,4 +111,19 @@ TEST(StepStability, TheGrowthGuardHoldsTheLadderBelowTheInstability) {
   EXPECT_TRUE(blas::all_finite(ib.batch(0).state().storage()));
 }
 
+/// A run's end inside a rung: that step alone is shortened to land on it, the ladder keeps its level.
+TEST(StepStability, AStepLandsOnTheRunsEndAndTheLadderKeepsItsRung) {
+  ImmersedBoundary ib = guarded_box(1.05);
+  ib.step();
+  const double rung = ib.dt(), t = ib.time();
+  const sim::Clock before = ib.clock();
+  const IbStepReport r = ib.step(rung / 3);
+  EXPECT_EQ(r.dt, rung / 3);
+  EXPECT_NEAR(ib.time(), t + rung / 3, 1e-15 * t);
+  EXPECT_EQ(ib.dt(), rung);
+  EXPECT_EQ(ib.clock().level, before.level);
+  // A limit beyond the rung changes nothing.
+  EXPECT_EQ(ib.step(10 * rung).dt, rung);
+}
+
 }  // namespace

@@ -181,7 +181,7 @@ Progress Run::evolve(long max_steps) {
       if (max_steps >= 0 && taken == max_steps) return progress();  // the caller steps again soon
       ++taken;
       const auto t0 = clock_type::now();
-      const sim::IbStepReport report = ib_.step();
+      const sim::IbStepReport report = ib_.step(options_.land_on_end ? options_.t_end - ib_.time() : INFINITY);
       const auto t1 = clock_type::now();
       sitting_seconds_ += seconds_between(t0, t1);
       record_.wall_seconds += seconds_between(t0, t1);

@@ -53,6 +53,10 @@ struct Options {
   /// false: its series, cells, points and clock only (io/checkpoint.hpp), for runs whose result
   /// those are (a study's finished runs, kept small); the `rbfib` command keeps the whole state.
   bool ended_keeps_fluid = true;
+  /// With the adaptive step, the last step is shortened to land on t_end (runs compared at their
+  /// end); otherwise it may pass it by part of a rung. Never on `until`: a run continued from a
+  /// sitting's end is the same as one taken at once.
+  bool land_on_end = false;
   /// A split fluid (dist/): each process steps its part of a scene; the cadences and the sitting's
   /// end are agreed by all, process 0 writes the checkpoint. Null: one process.
   std::shared_ptr<const FluidDecomposition> parts;

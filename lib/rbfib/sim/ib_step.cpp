@@ -205,13 +205,17 @@ void ImmersedBoundary::restore(const Carried& whole) {
   fluid_->set_dt(c.clock.dt);
 }
 
+double ImmersedBoundary::rung(int level) const {
+  const AdaptiveStep& a = options_.adaptive;
+  return a.ratio == 2 ? std::ldexp(a.dt_min, level) : a.dt_min * std::pow(a.ratio, level);
+}
+
 void ImmersedBoundary::set_level(int level) {
   level_ = level;
   allowing_ = 0;
   past_.clear();  // D is a difference at one step size
   flipping_ = quiet_ = 0;
-  const AdaptiveStep& a = options_.adaptive;
-  fluid_->set_dt(a.ratio == 2 ? std::ldexp(a.dt_min, level) : a.dt_min * std::pow(a.ratio, level));
+  fluid_->set_dt(rung(level));
 }
 
 int ImmersedBoundary::level_within(double dt) const {
@@ -371,9 +375,15 @@ void ImmersedBoundary::migrate() {
   }
 }
 
-IbStepReport ImmersedBoundary::step() {
+IbStepReport ImmersedBoundary::step(double at_most) {
   migrate();
   const AdaptiveStep& a = options_.adaptive;
+  // The run's end: a rung that passes it is shortened for this step alone (the level is kept).
+  const bool shortened = a.enabled && at_most > 0 && at_most < dt() * (1 - 1e-9);
+  auto land = [&] {
+    if (shortened) fluid_->set_dt(std::min(rung(level_), at_most));
+  };
+  land();
   int refused = 0;
   int by_guard = 0;
   for (;;) {
@@ -381,10 +391,15 @@ IbStepReport ImmersedBoundary::step() {
       IbStepReport r = attempt();
       r.refused = refused;
       r.refused_by_guard = by_guard;
+      if (shortened) {  // the rung again for any step after this one; the guard's memory is of one step size
+        fluid_->set_dt(rung(level_));
+        past_.clear();
+        flipping_ = quiet_ = 0;
+      }
       if (a.enabled) {
         // Grow by one level only after grow_after consecutive steps that allowed the next rung: by
         // eq. 5.4 (inertial criterion) and by the sets' bounds and the guard's cap.
-        const double next = a.ratio * r.dt;
+        const double next = a.ratio * rung(level_);
         // With the stability criterion the guard must first have watched this rung quietly for
         // guard_steps steps (its memory starts empty at each rung): a ladder that climbed faster
         // would outrun the guard.
@@ -402,6 +417,7 @@ IbStepReport ImmersedBoundary::step() {
                              " s: " + no.why + " (the state before this step is kept)");
       if (a.criterion == StepCriterion::stability) ++by_guard;
       set_level(std::min(no.level, level_ - 1));
+      land();
       ++refused;
     }
   }

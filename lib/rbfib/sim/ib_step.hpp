@@ -248,8 +248,10 @@ class ImmersedBoundary {
   void restore(const Carried& c);
 
   /// One step of the coupling. Throws NumericalError (state unchanged) as described above; with the
-  /// adaptive step, eq. 5.4 stops the run only when even dt_min violates it.
-  IbStepReport step();
+  /// adaptive step, eq. 5.4 stops the run only when even dt_min violates it. With the adaptive
+  /// step, a rung longer than `at_most` (s; the run's end less t) is shortened to it for this step
+  /// alone (the ladder keeps its level): runs compared at their end land on it.
+  IbStepReport step(double at_most = INFINITY);
   /// The step size of the next step (s).
   double dt() const { return fluid_->dt(); }
 
@@ -281,6 +283,8 @@ class ImmersedBoundary {
     std::string why;
   };
   void set_level(int level);
+  /// The step of a level (s): ratio^level dt_min.
+  double rung(int level) const;
   /// The level whose step is the largest at most dt (s); -1 below dt_min.
   int level_within(double dt) const;
   /// The growth guard's measures of this attempt's forces, into the report; with the stability
