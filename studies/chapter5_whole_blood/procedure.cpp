@@ -7,6 +7,7 @@
 #include "rbfib/io/snapshot.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -66,6 +67,21 @@ scene::Scene whole_blood_scene(const Setup& s, const Wall& w, const std::vector<
 
 std::string run_tag(const Wall& w, bool with_red, std::size_t k) { return w.name + (with_red ? "" : "_no_red_cells") + "_" + to_text(k); }
 
+/// Seconds per step of a scene from rest: the median of `steps` steps after a first one (which
+/// sizes the workspaces). The price of the runs without red cells before they begin: their sets
+/// (platelets, the endothelium) cost a fraction of the red cells' step.
+double probe_seconds_per_step(const scene::Scene& sc, int steps) {
+  sim::ImmersedBoundary ib = scene::build(sc);
+  ib.step();
+  std::vector<double> t;
+  for (int k = 0; k < steps; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    ib.step();
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return median(t);
+}
+
 
 }  // namespace
 
@@ -91,10 +107,11 @@ void WholeBlood::wall(const Wall& w, std::size_t wi) {
   // ---- init: endothelium and red cells, the wall turning ------------------------------------------
   const scene::Scene init_scene = whole_blood_scene(s, w, layout.red_cells, {}, starts.back());
   const std::string init_text = scene::to_yaml(init_scene, "chapter5_whole_blood: init (Sec. 5.2.1), " + w.name + " endothelium");
-  {  // An example for `rbfib run`: the same layout with platelets placed against it, the flow from rest, 40 us.
-    std::mt19937_64 erng(seed + 50 + wi);
-    const std::vector<double> E = scene::point_positions(init_scene.point_sets.at(0).surface, init_scene.grid.length);
-    const PlateletPlacement ex = place_platelets(plt, box, E, batch_layout(rbc, layout.red_cells), rbc.n, 2, ps, erng);
+  // An example for `rbfib run`: the same layout with platelets placed against it, the flow from rest, 40 us.
+  std::mt19937_64 erng(seed + 50 + wi);
+  const PlateletPlacement ex = place_platelets(plt, box, scene::point_positions(init_scene.point_sets.at(0).surface, init_scene.grid.length),
+                                               batch_layout(rbc, layout.red_cells), rbc.n, 2, ps, erng);
+  {
     scene::Scene example = whole_blood_scene(s, w, layout.red_cells, ex.platelets, 40 * us);
     example.diagnostics_every = 10;
     example.snapshot_every = 10 * us;
@@ -124,18 +141,24 @@ void WholeBlood::wall(const Wall& w, std::size_t wi) {
   // Steps needed at the mean step so far (the ladder's), or at dt.
   const double init_t = init.samples.empty() ? 0 : init.samples.back().at(0), mean_dt = init.steps > 0 ? init_t / double(init.steps) : s.dt;
   add_cost("init " + w.name, double(init.steps), s.ladder > 0 ? std::round(starts.back() / mean_dt) : double(std::lround(starts.back() / s.dt)),
-           init.seconds_per_step());
+           init.seconds_per_step(), init.steps > 0 ? "its own steps" : "not begun");
   if (!init.stopped.empty()) throw NumericalError(Cause::solver, "the init run (" + w.name + ") stopped: " + init.stopped);
   for (const auto& r : init.samples) measures.closest_red = std::min(measures.closest_red, r[2] / s.h);
   if (!init.finished) {
     done.inits = done.red_runs = false;
     (w.bump > 0 ? done.free_runs : done.flat_runs) = false;
-    // The runs from its starting states are still to come: their steps at the init's rate.
+    // The runs from its starting states are still to come. With red cells: the init's sets and two
+    // platelets, at the init's seconds per step and mean step. Without them (the bumpy wall's): at
+    // the seconds per step of a probe of their own sets (the platelets and the endothelium, from
+    // rest), and the init's mean step (their own, platelet-held, is not known before they run).
+    const double free_step = w.bump > 0 ? probe_seconds_per_step(whole_blood_scene(s, w, {}, ex.platelets, 40 * us), 5) : NAN;
     for (std::size_t k = 0; k < starts.size(); ++k)
       for (bool with_red : {true, false})
         if (with_red || w.bump > 0) {  // the seed removes the red cells over the bumpy wall only
-          add_cost(run_tag(w, with_red, k) + " (to come)", 0, std::round(window / mean_dt), init.seconds_per_step());
-          st::record_run(results, run_tag(w, with_red, k), st::RunProgress{false, 0, window, 0, init.seconds_per_step(), ""});
+          const double sps = with_red ? init.seconds_per_step() : free_step;
+          add_cost(run_tag(w, with_red, k) + " (to come)", 0, std::round(window / mean_dt), sps,
+                   with_red ? "the init's s per step and mean step" : "a probe of 5 steps of its sets from rest; the init's mean step");
+          st::record_run(results, run_tag(w, with_red, k), st::RunProgress{false, 0, window, 0, sps, ""});
         }
     st::log(opt, w.name + ": init run at t = " + to_text(init_t / ms) + " ms of " + to_text(starts.back() / ms) +
                      " ms; continued at the next start");
@@ -190,7 +213,8 @@ void WholeBlood::run_from(const Wall& w, const Domain& box, std::size_t k, bool 
   progress.t -= t_start, progress.t_end = window, progress.steps = steps;
   st::record_run(results, tag, progress);
   const double mean_dt = steps > 0 ? progress.t / double(steps) : s.dt;  // the ladder's mean step so far, or dt
-  add_cost(tag, double(steps), s.ladder > 0 ? std::round(window / mean_dt) : double(std::lround(window / s.dt)), run.seconds_per_step());
+  add_cost(tag, double(steps), s.ladder > 0 ? std::round(window / mean_dt) : double(std::lround(window / s.dt)), run.seconds_per_step(),
+           steps > 0 ? "its own steps" : "not begun");
   if (!run.finished) {
     (with_red ? done.red_runs : done.free_runs) = false;
     if (with_red && w.bump == 0) done.flat_runs = false;
@@ -205,7 +229,7 @@ void WholeBlood::run_from(const Wall& w, const Domain& box, std::size_t k, bool 
 void WholeBlood::summarize() {
   Json& V = results["values"];
   V["hours_to_solution"] = hours_left;
-  cost["rows"].push(row({"all", s.h / um, s.dt / units::ns, NAN, NAN, NAN, hours_left}));
+  cost["rows"].push(row({"all", s.h / um, s.dt / units::ns, NAN, NAN, NAN, hours_left, ""}));
   const bool has_flat = std::any_of(s.walls.begin(), s.walls.end(), [](const Wall& w) { return w.bump == 0; });
   measures.values(V, done, has_flat);
   auto put = [&](const std::string& name, double value, bool runs_finished) { V[name] = runs_finished ? value : NAN; };

@@ -58,7 +58,8 @@ struct WholeBlood {
   Json procedure = st::table({"wall", "moved", "draws", "closest_um", "platelet_draws", "attempts_platelet_1", "attempts_platelet_2",
                               "refused_red_cells", "refused_surface_or_box", "gap1_um", "gap2_um", "starting_times_ms"},
                              {"", "", "", "um", "", "", "", "", "", "um", "um", "ms"});
-  Json cost = st::table({"run", "h_um", "dt_ns", "steps_done", "steps_needed", "seconds_per_step", "hours_to_solution"}, {"", "um", "ns", "", "", "s", "h"});
+  Json cost = st::table({"run", "h_um", "dt_ns", "steps_done", "steps_needed", "seconds_per_step", "hours_to_solution", "priced_from"},
+                        {"", "um", "ns", "", "", "s", "h", ""});
   ReferenceSites rbc = reference_sites(cells::red_cell_spec(s.rbc_nd, s.rbc_ns)), plt = reference_sites(cells::platelet_spec(s.plt_n, s.plt_n));
   Measures measures{s.h};
   Finished done{};
@@ -66,10 +67,12 @@ struct WholeBlood {
   int refused_red = 0, refused_surface = 0;
   std::vector<double> attempts{};  // points drawn per platelet placed
 
-  void add_cost(const std::string& run, double steps_done, double needed, double seconds_per_step) {
+  /// A row of the cost table: the run's steps to go at its seconds per step; `from` says where its
+  /// seconds per step and steps needed come from (its own steps, or another run's for one not begun).
+  void add_cost(const std::string& run, double steps_done, double needed, double seconds_per_step, const std::string& from) {
     const double hours = (needed - steps_done) * seconds_per_step / 3600;
     hours_left += hours;
-    cost["rows"].push(row({run, s.h / units::um, s.dt / units::ns, steps_done, needed, seconds_per_step, hours}));
+    cost["rows"].push(row({run, s.h / units::um, s.dt / units::ns, steps_done, needed, seconds_per_step, hours, from}));
   }
   void wall(const Wall& w, std::size_t wi);
   void run_from(const Wall& w, const Domain& box, std::size_t k, bool with_red, double t_start, const std::string& start_file,
