@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace rbfib::sim {
@@ -99,23 +100,27 @@ MembraneStiffness membrane_stiffness(const cells::CellType& type) {
   return m;
 }
 
-double membrane_dt_limit(const MembraneStiffness& m, double h, double rho, double mu, ib::Kernel kernel, double gain) {
+namespace {
+/// The limit over the mode families and the family that sets it.
+std::pair<double, std::string> limit(const MembraneStiffness& m, double h, double rho, double mu, ib::Kernel kernel, double gain) {
   require(h > 0 && rho > 0 && mu > 0, "membrane stability: h, rho, mu", to_text(h) + ", " + to_text(rho) + ", " + to_text(mu),
           "must be positive");
   require(gain > 0, "membrane stability: gain", gain, "must be positive");
-  double dt = INFINITY;
-  for (const Family& f : families(m, h, mu, kernel)) dt = std::min(dt, family_limit(f, rho * h * h / mu, gain));
-  return dt;
+  std::pair<double, std::string> best{INFINITY, "none"};
+  for (const Family& f : families(m, h, mu, kernel)) {
+    const double l = family_limit(f, rho * h * h / mu, gain);
+    if (l < best.first) best = {l, f.name};
+  }
+  return best;
+}
+}  // namespace
+
+double membrane_dt_limit(const MembraneStiffness& m, double h, double rho, double mu, ib::Kernel kernel, double gain) {
+  return limit(m, h, rho, mu, kernel, gain).first;
 }
 
 std::string membrane_limiting_family(const MembraneStiffness& m, double h, double rho, double mu, ib::Kernel kernel, double gain) {
-  double dt = INFINITY;
-  std::string name = "none";
-  for (const Family& f : families(m, h, mu, kernel)) {
-    const double l = family_limit(f, rho * h * h / mu, gain);
-    if (l < dt) dt = l, name = f.name;
-  }
-  return name;
+  return limit(m, h, rho, mu, kernel, gain).second;
 }
 
 }  // namespace rbfib::sim
